@@ -1,0 +1,46 @@
+// Damped reflecting walls of a box [lo, hi] (the seed scheme's boundary).
+//
+// A particle closer than `distance` (= h) to a wall is put back at that
+// distance, and if it moves into the wall its normal velocity becomes
+// -e times itself (e = restitution in [0, 1]). Both the half-step and the
+// integer-time velocities are reflected, so leap-frog stays consistent.
+// A particle already moving away from the wall keeps its velocity: flipping it
+// would drive it back into the wall.
+#pragma once
+
+#include "sph/particles.hpp"
+
+namespace sph {
+
+template <int D>
+struct DampedReflectingWalls {
+  Vec<D> lo, hi;
+  Real distance;
+  Real restitution;
+
+  void apply(Particles<D>& P) const {
+    const std::size_t n = P.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int d = 0; d < D; ++d) {
+        const Real lower = lo[d] + distance, upper = hi[d] - distance;
+        if (P.x[i][d] < lower) {
+          P.x[i][d] = lower;
+          reflect(P, i, d, -1);
+        } else if (P.x[i][d] > upper) {
+          P.x[i][d] = upper;
+          reflect(P, i, d, +1);
+        }
+      }
+    }
+  }
+
+ private:
+  // outward: -1 for a lower wall, +1 for an upper wall.
+  void reflect(Particles<D>& P, std::size_t i, int d, int outward) const {
+    if (P.vHalf[i][d] * outward > 0) P.vHalf[i][d] *= -restitution;
+    if (P.v[i][d] * outward > 0) P.v[i][d] *= -restitution;
+  }
+};
+
+}  // namespace sph

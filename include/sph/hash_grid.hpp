@@ -1,0 +1,199 @@
+// HashGrid<D>: hashed cell grid for fixed-radius neighbour search.
+//
+// Space is cut into cubic cells of edge `cellSize` (the kernel support), so
+// every neighbour of a particle lies in its own cell or one of the 3^D - 1
+// adjacent cells. Cell coordinates c = floor(x / cellSize) are hashed into a
+// power-of-two table of about 2N buckets (spatial hashing as in Teschner et
+// al. 2003, "Optimized spatial hashing for collision detection of deformable
+// objects"), so the domain needs no bounds and memory grows with N, not with
+// volume. The hash is the row-major index of the cell in the particles'
+// bounding box, modulo the table size:
+//   bucket = (c0 - m0 + 1) + (c1 - m1 + 1) s1 + (c2 - m2 + 1) s2   mod T
+// (m: lowest cell, s: row and plane strides of the box). Unlike the xor hash
+// it keeps the three cells of a stencil row in consecutive buckets, so their
+// particles are one contiguous run in memory; and it is collision-free
+// whenever the box has fewer cells than T.
+//
+// build() counting-sorts the particles by bucket; after the caller applies
+// order() to the particle arrays, the particles of bucket b are the contiguous
+// range [cellStart[b], cellStart[b+1]). Two cells may share a bucket: the
+// distance test filters the extra candidates, and forEachNeighbour() visits a
+// bucket shared by two stencil cells only once.
+#pragma once
+
+#include "sph/types.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace sph {
+
+template <int D>
+class HashGrid {
+ public:
+  static constexpr int stencilSize = D == 2 ? 9 : 27;
+
+  // `support`: largest interaction distance. The cell is a hair larger so that
+  // rounding in floor(x / cellSize) can never put a pair closer than `support`
+  // two cells apart.
+  explicit HashGrid(Real support)
+      : cellSize_(support * (1 + 1e-9)), invCell_(1 / cellSize_) {
+    for (int s = 0; s < stencilSize; ++s) {
+      int rest = s;
+      for (int d = 0; d < D; ++d, rest /= 3) stencil_[s][d] = rest % 3 - 1;
+    }
+  }
+
+  Real cellSize() const { return cellSize_; }
+
+  // Sort particles by bucket. Afterwards order()[k] is the old index of the
+  // particle that goes to position k; apply it with Particles::permute().
+  void build(const std::vector<Vec<D>>& x) {
+    const std::size_t n = x.size();
+    const std::size_t tableSize = tableSizeFor(n);
+    if (cellStart_.size() != tableSize + 1) {
+      cellStart_.assign(tableSize + 1, 0);
+      mask_ = tableSize - 1;
+    }
+    bucket_.resize(n);
+    order_.resize(n);
+    setStrides(x);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) bucket_[i] = bucketOf(cellOf(x[i]));
+
+    // Counting sort, stable: count, inclusive prefix sum (cellStart_[b] = end
+    // of bucket b), then scatter backwards so cellStart_[b] becomes its start.
+    std::fill(cellStart_.begin(), cellStart_.end(), 0u);
+    for (std::size_t i = 0; i < n; ++i) ++cellStart_[bucket_[i]];
+    for (std::size_t b = 1; b < tableSize; ++b) cellStart_[b] += cellStart_[b - 1];
+    cellStart_[tableSize] = static_cast<std::uint32_t>(n);
+    for (std::size_t i = n; i-- > 0;) order_[--cellStart_[bucket_[i]]] = static_cast<std::uint32_t>(i);
+  }
+
+  const std::vector<std::uint32_t>& order() const { return order_; }
+
+  // Call f(j) for every particle j (in sorted numbering, including i itself)
+  // in the cells around position xi. Callers apply their own distance test.
+  template <class F>
+  void forEachCandidate(const Vec<D>& xi, F&& f) const {
+    Stencil st;
+    stencilAt(cellOf(xi), st);
+    st.forEachCandidate(f);
+  }
+
+  // The particle ranges of the (distinct) buckets around one cell. Particles
+  // of the same cell share it, so loops over sorted particles compute it once
+  // per cell instead of once per particle.
+  struct Stencil {
+    IVec<D> cell;
+    int count = 0;
+    std::uint32_t begin[stencilSize], end[stencilSize];
+
+    template <class F>
+    void forEachCandidate(F&& f) const {
+      for (int s = 0; s < count; ++s)
+        for (std::uint32_t j = begin[s]; j < end[s]; ++j) f(j);
+    }
+  };
+
+  // Update `st` to the stencil of the cell holding x, recomputing only when
+  // the cell differs from the one it already describes.
+  void updateStencil(const Vec<D>& x, Stencil& st) const {
+    const IVec<D> c = cellOf(x);
+    if (st.count == 0 || c != st.cell) stencilAt(c, st);
+  }
+
+  // Call f(j, rij, r2) for every j with |xi - xj|^2 < radius2, rij = xi - xj.
+  template <class F>
+  void forEachNeighbour(const std::vector<Vec<D>>& x, const Vec<D>& xi,
+                        Real radius2, F&& f) const {
+    forEachCandidate(xi, [&](std::uint32_t j) {
+      const Vec<D> rij = xi - x[j];
+      const Real r2 = rij.squaredNorm();
+      if (r2 < radius2) f(j, rij, r2);
+    });
+  }
+
+  std::size_t bytesAllocated() const {
+    return (cellStart_.capacity() + bucket_.capacity() +
+            order_.capacity()) * sizeof(std::uint32_t);
+  }
+
+ private:
+  static std::size_t tableSizeFor(std::size_t n) {
+    std::size_t t = 64;
+    while (t < 2 * n) t *= 2;
+    return t;
+  }
+
+  IVec<D> cellOf(const Vec<D>& x) const {
+    IVec<D> c;
+    for (int d = 0; d < D; ++d) {
+      // floor() without the libm call: truncate, then step down for negatives.
+      const Real s = x[d] * invCell_;
+      const auto t = static_cast<std::int64_t>(s);
+      c[d] = t - (static_cast<Real>(t) > s);
+    }
+    return c;
+  }
+
+  void stencilAt(const IVec<D>& c, Stencil& st) const {
+    st.cell = c;
+    st.count = 0;
+    std::uint32_t seen[stencilSize];
+    int nSeen = 0;
+    for (const IVec<D>& offset : stencil_) {
+      const std::uint32_t b = bucketOf(c + offset);
+      bool dup = false;
+      for (int k = 0; k < nSeen; ++k) dup |= seen[k] == b;
+      seen[nSeen++] = b;
+      if (dup || cellStart_[b] == cellStart_[b + 1]) continue;
+      // A bucket that directly follows the previous range extends it.
+      if (st.count > 0 && st.end[st.count - 1] == cellStart_[b]) {
+        st.end[st.count - 1] = cellStart_[b + 1];
+        continue;
+      }
+      st.begin[st.count] = cellStart_[b];
+      st.end[st.count] = cellStart_[b + 1];
+      ++st.count;
+    }
+  }
+
+  // Lowest cell and strides of the particles' bounding box (one cell of
+  // margin on each side, for the stencil).
+  void setStrides(const std::vector<Vec<D>>& x) {
+    Vec<D> lo = Vec<D>::Constant(0), hi = Vec<D>::Constant(0);
+    if (!x.empty()) lo = hi = x[0];
+    for (const Vec<D>& xi : x) {
+      lo = lo.cwiseMin(xi);
+      hi = hi.cwiseMax(xi);
+    }
+    const IVec<D> cLo = cellOf(lo), cHi = cellOf(hi);
+    origin_ = cLo - IVec<D>::Ones();
+    std::uint64_t stride = 1;
+    for (int d = 0; d < D; ++d) {
+      stride_[d] = stride;
+      stride *= static_cast<std::uint64_t>(cHi[d] - cLo[d] + 3);
+    }
+  }
+
+  std::uint32_t bucketOf(const IVec<D>& c) const {
+    std::uint64_t hash = 0;
+    for (int d = 0; d < D; ++d) hash += static_cast<std::uint64_t>(c[d] - origin_[d]) * stride_[d];
+    return static_cast<std::uint32_t>(hash & mask_);
+  }
+
+  Real cellSize_;
+  Real invCell_;
+  IVec<D> stencil_[stencilSize];  // cell offsets {-1, 0, 1}^D, x fastest
+  IVec<D> origin_ = IVec<D>::Zero();
+  std::uint64_t stride_[D] = {};
+  std::uint64_t mask_ = 0;
+  std::vector<std::uint32_t> cellStart_;  // bucket b: [cellStart_[b], cellStart_[b+1])
+  std::vector<std::uint32_t> bucket_;
+  std::vector<std::uint32_t> order_;
+};
+
+}  // namespace sph

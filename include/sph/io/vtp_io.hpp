@@ -1,0 +1,41 @@
+// Particle snapshots as VTK XML PolyData (.vtp), written with VTK's own
+// vtkXMLPolyDataWriter (binary, zlib-compressed) and read back with
+// vtkXMLPolyDataReader (for continuing a run from any output step).
+//
+// Points are 3D (z = 0 in 2D) with one vertex cell each. Point data:
+// velocity, acceleration (3 components, also in 2D), density, pressure,
+// mass, id. Field data: TimeValue (ParaView's time key), step,
+// smoothing_length, dimension, particle_spacing.
+#pragma once
+
+#include "sph/particles.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace sph {
+
+struct SnapshotInfo {
+  Real time = 0;
+  long step = 0;
+  Real smoothingLength = 0;
+  Real particleSpacing = 0;
+};
+
+// Written to a temporary name and renamed; throws std::runtime_error on failure.
+template <int D>
+void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo& info);
+
+struct VtpParticles {
+  std::vector<std::array<Real, 3>> x, v;
+  std::vector<Real> m;           // empty if the file has no mass array
+  std::vector<std::int64_t> id;  // empty if the file has no id array
+  Real time = 0;
+  bool hasVelocity = false;
+};
+
+// Throws std::runtime_error naming the file on failure.
+VtpParticles readVtp(const std::string& path);
+
+}  // namespace sph

@@ -1,0 +1,30 @@
+// Initial particles: lattice block, lattice disc/ball, explicit points, and
+// files (CSV with x,y[,z][,vx,vy[,vz]] columns; a .vtp written by sph).
+//
+// Lattice generators put particles at cell centres: a block [min, max] with
+// spacing dx holds round((max - min)/dx) particles per axis at
+// min + (i + 1/2) dx. The disc/ball holds the lattice points c + i dx with
+// |x - c| <= R.
+#pragma once
+
+#include "sph/case_config.hpp"
+#include "sph/particles.hpp"
+
+#include <optional>
+#include <string>
+
+namespace sph {
+
+template <int D>
+struct InitialState {
+  Particles<D> particles;
+  bool massesGiven = false;   // masses came from a .vtp: do not rescale
+  Real startTime = 0;         // time stored in a .vtp, else 0
+};
+
+// Builds the initial particles of a validated case; throws CaseError on a
+// missing or malformed file, zero particles, or a particle outside the domain.
+template <int D>
+InitialState<D> buildInitialState(const CaseConfig& c);
+
+}  // namespace sph

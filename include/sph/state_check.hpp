@@ -1,0 +1,77 @@
+// StateCheck<D>: after every step, every value must be finite and every
+// particle inside the domain. The first offending particle (lowest id among
+// the lowest sorted index) is reported with the quantity that failed, so a
+// run that blows up stops with an explanation instead of writing garbage.
+#pragma once
+
+#include "sph/particles.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+
+namespace sph {
+
+struct StateFailure {
+  std::size_t index;      // sorted position
+  std::int64_t id;        // particle id
+  std::string quantity;   // "position", "velocity", "acceleration", "density", "domain"
+  std::string detail;
+};
+
+template <int D>
+struct StateCheck {
+  Vec<D> lo, hi;
+
+  std::optional<StateFailure> operator()(const Particles<D>& P) const {
+    const std::size_t n = P.size();
+    std::size_t first = n;
+#pragma omp parallel for schedule(static) reduction(min : first)
+    for (std::size_t i = 0; i < n; ++i)
+      if (!ok(P, i) && i < first) first = i;
+    if (first == n) return std::nullopt;
+    return describe(P, first);
+  }
+
+ private:
+  bool ok(const Particles<D>& P, std::size_t i) const {
+    const Vec<D>& x = P.x[i];
+    return x.allFinite() && P.v[i].allFinite() && P.a[i].allFinite() &&
+           std::isfinite(P.rho[i]) && (x.array() >= lo.array()).all() &&
+           (x.array() <= hi.array()).all();
+  }
+
+  static std::string vecString(const Vec<D>& v) {
+    std::string s = "(";
+    for (int d = 0; d < D; ++d) s += (d ? ", " : "") + std::to_string(v[d]);
+    return s + ")";
+  }
+
+  StateFailure describe(const Particles<D>& P, std::size_t i) const {
+    StateFailure f{i, P.id[i], "", ""};
+    if (!P.x[i].allFinite()) {
+      f.quantity = "position";
+      f.detail = "position " + vecString(P.x[i]) + " is not finite";
+    } else if (!P.a[i].allFinite()) {
+      f.quantity = "acceleration";
+      f.detail = "acceleration " + vecString(P.a[i]) +
+                 " is not finite (two particles at the same position make the "
+                 "pressure kernel r_ij/q singular)";
+    } else if (!P.v[i].allFinite()) {
+      f.quantity = "velocity";
+      f.detail = "velocity " + vecString(P.v[i]) + " is not finite";
+    } else if (!std::isfinite(P.rho[i])) {
+      f.quantity = "density";
+      f.detail = "density " + std::to_string(P.rho[i]) + " is not finite";
+    } else {
+      f.quantity = "domain";
+      f.detail = "position " + vecString(P.x[i]) + " is outside the domain " +
+                 vecString(lo) + " - " + vecString(hi);
+    }
+    return f;
+  }
+};
+
+}  // namespace sph

@@ -1,0 +1,25 @@
+// Seed viscous force (Laplacian form, Mueller et al. 2003):
+//
+//   F_v,i = - mu sum_{j != i} (m_j / rho_j) v_ij L(q),   v_ij = v_i - v_j,
+//   L(q) = 40/(pi h^4) (1 - q)                          (SeedKernels)
+//
+// mu is the dynamic viscosity; a case with mu = 0 does not construct this term.
+#pragma once
+
+#include "sph/kernels/seed_kernels.hpp"
+#include "sph/terms/pair_accelerations.hpp"
+
+namespace sph {
+
+struct SeedViscosity {
+  SeedKernels kernels;
+  Real mu;
+
+  template <int D>
+  Vec<D> force(const PairContext<D>& c, const Particles<D>& P) const {
+    return (-mu * P.m[c.j] / P.rho[c.j] * kernels.viscosityLaplacian(c.q)) *
+           (P.v[c.i] - P.v[c.j]);
+  }
+};
+
+}  // namespace sph

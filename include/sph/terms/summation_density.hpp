@@ -1,0 +1,28 @@
+// Summation density: rho_i = sum_j m_j W(|x_i - x_j|), self term included.
+//
+// Gather form: particle i writes only rho_i, so the loop runs in parallel
+// without atomics and gives the same result for any thread count.
+// Kernel needs density(r2) and densityAtZero().
+#pragma once
+
+#include "sph/neighbour_list.hpp"
+#include "sph/particles.hpp"
+
+namespace sph {
+
+template <int D, class Kernel>
+void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours,
+                             const Kernel& W) {
+  const std::size_t n = P.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec<D> xi = P.x[i];
+    Real rho_i = P.m[i] * W.densityAtZero();
+    neighbours.forEach(i, [&](std::uint32_t j) {
+      rho_i += P.m[j] * W.density((xi - P.x[j]).squaredNorm());
+    });
+    P.rho[i] = rho_i;
+  }
+}
+
+}  // namespace sph

@@ -1,0 +1,25 @@
+// Basic numeric types shared by every module.
+//
+// Real is double throughout: the seed scheme's pressure constants span many
+// orders of magnitude (k ~ 1e3, h^-4 ~ 1e8) and the tests compare against
+// analytic solutions to round-off.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+
+namespace sph {
+
+using Real = double;
+
+template <int D>
+using Vec = Eigen::Matrix<Real, D, 1>;
+
+template <int D>
+using IVec = Eigen::Matrix<std::int64_t, D, 1>;
+
+// The axis gravity acts along: y in 2D, z in 3D ("up" is the last axis).
+template <int D>
+constexpr int verticalAxis = D - 1;
+
+}  // namespace sph

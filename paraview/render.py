@@ -1,0 +1,688 @@
+#!/usr/bin/env pvpython
+"""Render the particles of an `sph` run to PNG, headless.
+
+    xvfb-run -a pvpython --disable-xdisplay-test paraview/render.py RUN [options]
+
+RUN is a run folder written by `sph run ... --output RUN` (it holds one .pvd
+file) or the .pvd file itself.  By default the last output step is rendered
+into RUN/<name>.png with a view built on the fly: particles as point Gaussians
+of radius particle_spacing/2 coloured by pressure, a colour legend, the time,
+white background; a top view for 2D runs, an isometric-like camera for 3D.
+
+Examples:
+    render.py runs/dam_break                          # last step, pressure
+    render.py runs/dam_break --field density --time 0 --output t0.png
+    render.py runs/dam_break --state paraview/water2d.pvsm --size 800 800
+    render.py runs/dam_break --all --output frames/ --mp4   # every step
+
+Exit status: 0 on success, 1 on any error (with a message on stderr),
+2 on bad command-line usage.
+"""
+import argparse
+import glob
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ONE_LINER = ("xvfb-run -a pvpython --disable-xdisplay-test "
+             "paraview/render.py RUN_DIR [options]")
+REEXEC_ENV = "SPH_RENDER_REEXEC"
+
+# Screen layout, in normalised viewport coordinates (origin lower left).
+# check_png.py relies on the same numbers to tell particles from the legend
+# and the time annotation.
+PLOT_BOX = (0.03, 0.03, 0.76, 0.88)   # x0, y0, x1, y1: where the domain goes
+LEGEND_POSITION = (0.81, 0.08)        # lower-left corner of the colour legend
+LEGEND_LENGTH = 0.80
+ANNOTATION_FORMAT = "t = {time:.4f} s"
+DEFAULT_FIELD = "pressure"
+DEFAULT_COLORMAP = "Turbo"
+RADIUS_FACTOR = 0.5                   # Gaussian radius = factor * spacing
+VIEW_ANNOTATION = "sph."              # prefix of our keys in a view proxy
+
+
+class RenderError(Exception):
+    """An error to report to the user in one line, without a traceback."""
+
+
+def fail(msg):
+    sys.stderr.write("render.py: error: %s\n" % msg)
+    sys.exit(1)
+
+
+# ---------------------------------------------------------------------------
+# Everything up to the ParaView import works with any Python 3, so that the
+# common mistakes are reported fast and clearly.
+
+def parse_args(argv):
+    ap = argparse.ArgumentParser(
+        prog="render.py",
+        description=__doc__.split("\n\n")[0] + "\n\n    " + ONE_LINER,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog="See paraview/README.md for more.")
+    ap.add_argument("run", metavar="RUN_DIR_OR_PVD",
+                    help="sph output folder (holding one .pvd) or a .pvd file")
+    ap.add_argument("--state", metavar="FILE.pvsm",
+                    help="ParaView state to render with (its data file is "
+                         "replaced by this run's .pvd); default: a view built "
+                         "on the fly")
+    ap.add_argument("--field", metavar="NAME",
+                    help="point array to colour by (default: %s, or the "
+                         "state's choice with --state); vectors are coloured "
+                         "by magnitude unless --component is given"
+                         % DEFAULT_FIELD)
+    ap.add_argument("--component", choices=("Magnitude", "X", "Y", "Z"),
+                    default="Magnitude", help="vector component to colour by")
+    when = ap.add_mutually_exclusive_group()
+    when.add_argument("--time", metavar="T",
+                      help="simulation time to render (the nearest output "
+                           "step is used), or 'first' / 'last' (default)")
+    when.add_argument("--all", action="store_true",
+                      help="render every output step into numbered PNGs")
+    ap.add_argument("--size", nargs=2, type=int, metavar=("W", "H"),
+                    default=[800, 800], help="image size in pixels "
+                    "(default 800 800)")
+    ap.add_argument("--output", metavar="PNG_OR_DIR",
+                    help="PNG file, or folder for the PNG(s); default: "
+                         "RUN/<name>.png, or RUN/frames/<name>_NNNNN.png "
+                         "with --all. With --all a FILE.png gives "
+                         "FILE_NNNNN.png")
+    ap.add_argument("--range", nargs=2, type=float, metavar=("MIN", "MAX"),
+                    help="colour range (default: the data range at the "
+                         "rendered time, or over all steps with --all)")
+    ap.add_argument("--colormap", default=None,
+                    help="ParaView colour preset (default %s, or the state's)"
+                         % DEFAULT_COLORMAP)
+    ap.add_argument("--bounds", nargs="+", type=float, metavar="B",
+                    help="domain box to frame: XMIN XMAX YMIN YMAX "
+                         "[ZMIN ZMAX] (default: see README)")
+    ap.add_argument("--up", choices=("x", "y", "z"), default=None,
+                    help="vertical axis of 3D views (default z)")
+    ap.add_argument("--mp4", nargs="?", const="", metavar="FILE.mp4",
+                    help="also join the frames into an mp4 with ffmpeg "
+                         "(implies --all; default FILE: next to the frames)")
+    ap.add_argument("--fps", type=float, default=10.0,
+                    help="frames per second of the mp4 (default 10)")
+    a = ap.parse_args(argv)
+    if a.mp4 is not None:
+        a.all = True
+    if a.size[0] < 16 or a.size[1] < 16 or max(a.size) > 8192:
+        ap.error("--size must be between 16 and 8192 pixels")
+    if a.bounds is not None and len(a.bounds) not in (4, 6):
+        ap.error("--bounds takes 4 (2D) or 6 (3D) numbers")
+    if a.time is not None and a.time not in ("first", "last"):
+        try:
+            float(a.time)
+        except ValueError:
+            ap.error("--time takes a number, 'first' or 'last'")
+    return a
+
+
+def find_pvd(path):
+    """Return the .pvd of a run folder or the .pvd given."""
+    if not os.path.exists(path):
+        raise RenderError("no such run folder or file: %s" % path)
+    if os.path.isdir(path):
+        pvds = sorted(glob.glob(os.path.join(path, "*.pvd")))
+        if not pvds:
+            raise RenderError(
+                "no .pvd file in %s: is it the --output folder of "
+                "'sph run'?" % path)
+        if len(pvds) > 1:
+            raise RenderError(
+                "several .pvd files in %s (%s): pass the one to render"
+                % (path, ", ".join(os.path.basename(p) for p in pvds)))
+        return os.path.abspath(pvds[0])
+    if not path.endswith(".pvd"):
+        raise RenderError("%s is not a .pvd file nor a run folder" % path)
+    return os.path.abspath(path)
+
+
+def read_pvd(pvd):
+    """[(time, absolute .vtp path)] of a .pvd collection, sorted by time."""
+    try:
+        root = ET.parse(pvd).getroot()
+    except (ET.ParseError, OSError) as e:
+        raise RenderError("cannot read %s: %s" % (pvd, e))
+    base = os.path.dirname(pvd)
+    steps = []
+    for ds in root.iter("DataSet"):
+        f = ds.get("file")
+        if f is None:
+            continue
+        steps.append((float(ds.get("timestep", "0")),
+                      os.path.normpath(os.path.join(base, f))))
+    if not steps:
+        raise RenderError("%s lists no output step" % pvd)
+    missing = [f for _, f in steps if not os.path.isfile(f)]
+    if missing:
+        raise RenderError("%s refers to missing file(s): %s" % (
+            pvd, ", ".join(missing[:3]) + (" ..." if len(missing) > 3 else "")))
+    steps.sort(key=lambda s: s[0])
+    return steps
+
+
+def vtp_point_arrays(vtp):
+    """{name: number of components} of the point data of a VTK XML file,
+    read from its XML header (works for inline and appended data)."""
+    head = []
+    with open(vtp, "rb") as fh:
+        for line in fh:
+            if b"<AppendedData" in line:
+                break
+            head.append(line)
+    text = b"".join(head).decode("latin-1")
+    m = re.search(r"<PointData[^>]*>(.*?)</PointData>", text, re.S)
+    if not m:
+        return {}
+    arrays = {}
+    for tag in re.finditer(r"<DataArray\b([^>]*)>", m.group(1)):
+        attrs = dict(re.findall(r'(\w+)="([^"]*)"', tag.group(1)))
+        if "Name" in attrs:
+            arrays[attrs["Name"]] = int(attrs.get("NumberOfComponents", "1"))
+    return arrays
+
+
+def check_field(field, arrays, vtp):
+    if field not in arrays:
+        raise RenderError(
+            "no point array '%s' in %s; available arrays: %s"
+            % (field, os.path.basename(vtp), ", ".join(sorted(arrays))))
+
+
+def choose_steps(a, steps):
+    """Indices (into steps) of the output steps to render."""
+    if a.all:
+        return list(range(len(steps)))
+    if a.time in (None, "last"):
+        return [len(steps) - 1]
+    if a.time == "first":
+        return [0]
+    t = float(a.time)
+    i = min(range(len(steps)), key=lambda k: abs(steps[k][0] - t))
+    tol = 1e-9 * max(1.0, abs(t))
+    if abs(steps[i][0] - t) > tol:
+        sys.stderr.write("render.py: note: no output at t = %g, rendering "
+                         "the nearest one, t = %g\n" % (t, steps[i][0]))
+    return [i]
+
+
+def output_paths(a, pvd, steps, indices):
+    """PNG path for every index to render."""
+    name = os.path.splitext(os.path.basename(pvd))[0]
+    run_dir = os.path.dirname(pvd)
+    out = a.output
+    if a.all:
+        if out is None:
+            prefix = os.path.join(run_dir, "frames", name)
+        elif out.lower().endswith(".png"):
+            prefix = out[:-4]
+        else:
+            prefix = os.path.join(out, name)
+        return [("%s_%05d.png" % (prefix, i)) for i in indices]
+    if out is None:
+        return [os.path.join(run_dir, name + ".png")]
+    if out.lower().endswith(".png"):
+        return [out]
+    return [os.path.join(out, name + ".png")]
+
+
+def ensure_paraview(argv):
+    """Import paraview.simple, or re-run this script under xvfb-run/pvpython,
+    or explain how to run it."""
+    has_display = bool(os.environ.get("DISPLAY"))
+    try:
+        if not has_display:
+            raise ImportError("no X display")
+        import paraview.simple  # noqa: F401
+        return
+    except ImportError as e:
+        reason = str(e)
+    xvfb, pvpython = shutil.which("xvfb-run"), shutil.which("pvpython")
+    if os.environ.get(REEXEC_ENV) != "1" and xvfb and pvpython:
+        sys.stderr.write("render.py: note: %s; re-running as: xvfb-run -a "
+                         "pvpython --disable-xdisplay-test render.py ...\n"
+                         % ("no X display" if not has_display
+                            else "cannot import paraview (%s)" % reason))
+        sys.stderr.flush()
+        env = dict(os.environ, **{REEXEC_ENV: "1"})
+        cmd = [xvfb, "-a", pvpython, "--disable-xdisplay-test",
+               os.path.abspath(__file__)] + list(argv)
+        try:
+            os.execvpe(xvfb, cmd, env)
+        except OSError as e2:
+            fail("cannot start %s: %s" % (xvfb, e2))
+    if not has_display:
+        fail("no X display to render with (ParaView 5.11 from Debian "
+             "renders through X only). Run:\n    %s\n"
+             "(install with: apt-get install paraview python3-paraview "
+             "xvfb xauth)" % ONE_LINER)
+    fail("ParaView's Python modules cannot be imported (%s). Run the script "
+         "with ParaView's interpreter:\n    %s\n(install with: apt-get "
+         "install paraview python3-paraview xvfb xauth)" % (reason, ONE_LINER))
+
+
+# ---------------------------------------------------------------------------
+# ParaView side.  `pv` is paraview.simple, imported lazily.
+
+pv = None
+
+
+def field_data(vtp):
+    """Field data of one output file as {name: tuple of values}, plus bounds."""
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+    r = vtkXMLPolyDataReader()
+    r.SetFileName(vtp)
+    r.Update()
+    out = r.GetOutput()
+    fd = out.GetFieldData()
+    values = {}
+    for k in range(fd.GetNumberOfArrays()):
+        arr = fd.GetAbstractArray(k)
+        if arr is None or not hasattr(arr, "GetTuple"):
+            continue
+        n = arr.GetNumberOfTuples() * arr.GetNumberOfComponents()
+        values[arr.GetName()] = tuple(arr.GetValue(j) for j in range(n))
+    bounds = out.GetBounds() if out.GetNumberOfPoints() > 0 else None
+    return values, bounds
+
+
+class RunInfo:
+    """What the renderer needs to know about a run."""
+
+    def __init__(self, steps, bounds_override=None):
+        first, self.first_bounds = field_data(steps[0][1])
+        self.dimension = int(first.get("dimension", (0,))[0]) or None
+        self.spacing = first.get("particle_spacing", (None,))[0]
+        if self.dimension is None:
+            b = self.first_bounds or (0, 0, 0, 0, 0, 0)
+            self.dimension = 2 if b[5] - b[4] == 0 else 3
+        if not self.spacing:
+            h = first.get("smoothing_length", (None,))[0]
+            self.spacing = h / 1.3 if h else None
+        self.bounds = self._domain(steps, first, bounds_override)
+        if not self.spacing:   # last resort: a fraction of the domain
+            self.spacing = max(self.bounds[1] - self.bounds[0],
+                               self.bounds[3] - self.bounds[2]) / 100.0
+
+    def _domain(self, steps, first, override):
+        d = self.dimension
+        if override:
+            b = list(override) + [0.0, 0.0]
+            return tuple(b[:6])
+        if "domain_bounds" in first and len(first["domain_bounds"]) >= 2 * d:
+            b = list(first["domain_bounds"]) + [0.0, 0.0]
+            return tuple(b[:6])
+        if "domain_min" in first and "domain_max" in first:
+            lo, hi = first["domain_min"], first["domain_max"]
+            b = []
+            for k in range(3):
+                b += [lo[k] if k < len(lo) else 0.0,
+                      hi[k] if k < len(hi) else 0.0]
+            return tuple(b)
+        # Box around the particles of (a sample of) all steps ...
+        picks = steps if len(steps) <= 50 else [
+            steps[int(round(k * (len(steps) - 1) / 49.0))] for k in range(50)]
+        lo, hi = [math.inf] * 3, [-math.inf] * 3
+        for _, f in picks:
+            _, b = field_data(f)
+            if b is None:
+                continue
+            for k in range(3):
+                lo[k], hi[k] = min(lo[k], b[2 * k]), max(hi[k], b[2 * k + 1])
+        if lo[0] == math.inf:
+            lo, hi = [0.0] * 3, [1.0] * 3
+        # ... widened to the unit square / cube when the particles stay
+        # inside it: every shipped case lives there, and it keeps the frame
+        # fixed while the fluid moves.
+        eps = 1e-9
+        if all(lo[k] >= -eps and hi[k] <= 1 + eps for k in range(d)):
+            lo[:d], hi[:d] = [0.0] * d, [1.0] * d
+        if d == 2:
+            lo[2] = hi[2] = 0.0
+        return (lo[0], hi[0], lo[1], hi[1], lo[2], hi[2])
+
+
+def padded(bounds, pad, dimension):
+    b = list(bounds)
+    for k in range(dimension):
+        b[2 * k] -= pad
+        b[2 * k + 1] += pad
+    return b
+
+
+def fit_camera(view, bounds, dimension, size, up="z"):
+    """Frame `bounds` inside PLOT_BOX of a size[0] x size[1] image."""
+    W, H = float(size[0]), float(size[1])
+    x0, y0, x1, y1 = PLOT_BOX
+    bw = max(bounds[1] - bounds[0], 1e-12)
+    bh = max(bounds[3] - bounds[2], 1e-12)
+    cx, cy = (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2
+    cz = (bounds[4] + bounds[5]) / 2
+    if dimension == 2:
+        s = min((x1 - x0) * W / bw, (y1 - y0) * H / bh)   # pixels per unit
+        fx = cx + (0.5 - (x0 + x1) / 2) * W / s
+        fy = cy + (0.5 - (y0 + y1) / 2) * H / s
+        dist = 10.0 * max(bw, bh)
+        view.CameraParallelProjection = 1
+        view.CameraFocalPoint = [fx, fy, cz]
+        view.CameraPosition = [fx, fy, cz + dist]
+        view.CameraViewUp = [0.0, 1.0, 0.0]
+        view.CameraParallelScale = H / (2 * s)
+        view.InteractionMode = "2D"
+        return
+    # 3D: perspective camera looking down on the box from a corner.
+    ax = "xyz".index(up)
+    upv = [0.0, 0.0, 0.0]
+    upv[ax] = 1.0
+    # horizontal axes (right-handed), then the viewing direction
+    h1, h2 = [(1, 2), (2, 0), (0, 1)][ax]
+    direction = [0.0, 0.0, 0.0]
+    direction[h1], direction[h2], direction[ax] = 1.0, -1.3, 0.9
+    n = math.sqrt(sum(c * c for c in direction))
+    direction = [c / n for c in direction]
+    dz = max(bounds[5] - bounds[4], 1e-12)
+    radius = 0.5 * math.sqrt(bw * bw + bh * bh + dz * dz)
+    angle = 30.0
+    tan_half = math.tan(math.radians(angle / 2))
+    fit_px = min((x1 - x0) * W, (y1 - y0) * H)
+    dist = 2 * radius * H / (fit_px * 2 * tan_half) + radius
+    wpp = 2 * (dist - 0) * tan_half / H     # world units per pixel at focus
+    # camera frame: right = dir_to_camera x up ... built from forward/up
+    fwd = [-c for c in direction]
+    right = [fwd[1] * upv[2] - fwd[2] * upv[1],
+             fwd[2] * upv[0] - fwd[0] * upv[2],
+             fwd[0] * upv[1] - fwd[1] * upv[0]]
+    rn = math.sqrt(sum(c * c for c in right))
+    right = [c / rn for c in right]
+    cam_up = [right[1] * fwd[2] - right[2] * fwd[1],
+              right[2] * fwd[0] - right[0] * fwd[2],
+              right[0] * fwd[1] - right[1] * fwd[0]]
+    sx = -(0.5 - (x0 + x1) / 2) * W * wpp
+    sy = -(0.5 - (y0 + y1) / 2) * H * wpp
+    centre = [cx, cy, cz]
+    focal = [centre[k] - sx * right[k] - sy * cam_up[k] for k in range(3)]
+    view.CameraParallelProjection = 0
+    view.CameraViewAngle = angle
+    view.CameraFocalPoint = focal
+    view.CameraPosition = [focal[k] + dist * direction[k] for k in range(3)]
+    view.CameraViewUp = cam_up
+    view.InteractionMode = "3D"
+
+
+def style_view(view, dimension, size):
+    view.ViewSize = list(size)
+    if hasattr(view, "UseColorPaletteForBackground"):
+        view.UseColorPaletteForBackground = 0
+    view.Background = [1.0, 1.0, 1.0]
+    view.OrientationAxesVisibility = 1 if dimension == 3 else 0
+    if dimension == 3:
+        view.OrientationAxesLabelColor = [0.0, 0.0, 0.0]
+
+
+def color_by(display, view, field, component, ncomp, colormap):
+    if ncomp > 1:
+        pv.ColorBy(display, ("POINTS", field, component))
+    else:
+        pv.ColorBy(display, ("POINTS", field))
+    lut = pv.GetColorTransferFunction(field)
+    if colormap:
+        if not lut.ApplyPreset(colormap, True):
+            raise RenderError("unknown colour preset '%s'" % colormap)
+    display.SetScalarBarVisibility(view, True)
+    bar = pv.GetScalarBar(lut, view)
+    title = field if ncomp == 1 else "%s %s" % (
+        field, "magnitude" if component == "Magnitude" else component)
+    bar.Title = title
+    bar.ComponentTitle = ""
+    bar.Orientation = "Vertical"
+    bar.WindowLocation = "Any Location"
+    bar.Position = list(LEGEND_POSITION)
+    bar.ScalarBarLength = LEGEND_LENGTH
+    bar.TitleColor = [0.0, 0.0, 0.0]
+    bar.LabelColor = [0.0, 0.0, 0.0]
+    bar.TitleFontSize = 14
+    bar.LabelFontSize = 12
+    bar.RangeLabelFormat = "%-#.3g"
+    bar.AddRangeLabels = 1
+    return lut
+
+
+def build_default(pvd, info, field, component, ncomp, colormap, size, up):
+    """Reader, display and view of the on-the-fly view.  Also used by
+    make_states.py to build the state files."""
+    reader = pv.PVDReader(registrationName=os.path.basename(pvd),
+                          FileName=pvd)
+    view = pv.CreateView("RenderView")
+    style_view(view, info.dimension, size)
+    display = pv.Show(reader, view)
+    display.SetRepresentationType("Point Gaussian")
+    display.GaussianRadius = RADIUS_FACTOR * info.spacing
+    display.ShaderPreset = "Plain circle" if info.dimension == 2 else "Sphere"
+    color_by(display, view, field, component, ncomp, colormap)
+    label = pv.AnnotateTimeFilter(registrationName="time", Input=reader)
+    label.Format = ANNOTATION_FORMAT
+    ldisp = pv.Show(label, view)
+    ldisp.WindowLocation = "Upper Left Corner"
+    ldisp.FontSize = 14
+    ldisp.Color = [0.0, 0.0, 0.0]
+    # Remember what the camera frames, so that renders at another size (or
+    # of another run) can frame it again: see refit_from_state().
+    ann = view.SMProxy
+    ann.SetAnnotation(VIEW_ANNOTATION + "bounds",
+                      " ".join("%.17g" % v for v in info.bounds))
+    ann.SetAnnotation(VIEW_ANNOTATION + "dimension", str(info.dimension))
+    ann.SetAnnotation(VIEW_ANNOTATION + "up", up)
+    ann.SetAnnotation(VIEW_ANNOTATION + "radius_factor", str(RADIUS_FACTOR))
+    fit_camera(view, padded(info.bounds, RADIUS_FACTOR * info.spacing,
+                            info.dimension), info.dimension, size, up)
+    return reader, display, view
+
+
+def state_reader_ids(state):
+    """Ids of the PVDReader proxies in a .pvsm file."""
+    try:
+        root = ET.parse(state).getroot()
+    except (ET.ParseError, OSError) as e:
+        raise RenderError("cannot read state file %s: %s" % (state, e))
+    return [p.get("id") for p in root.iter("Proxy")
+            if p.get("group") == "sources" and p.get("type") == "PVDReader"]
+
+
+def load_state(state, pvd):
+    ids = state_reader_ids(state)
+    if not ids:
+        raise RenderError("state %s has no PVD reader to point at %s"
+                          % (state, pvd))
+    pv.LoadState(state, filenames=[{"id": i, "FileName": pvd} for i in ids])
+    readers = [p for p in pv.GetSources().values()
+               if p.GetXMLName() == "PVDReader"]
+    if not readers:
+        raise RenderError("state %s: no PVD reader after loading" % state)
+    reader = readers[0]
+    views = [v for v in pv.GetViews() if v.GetXMLName() == "RenderView"]
+    if not views:
+        raise RenderError("state %s has no render view" % state)
+    view = views[0]
+    pv.SetActiveView(view)
+    display = pv.GetDisplayProperties(reader, view)
+    return reader, display, view
+
+
+CAMERA_PROPERTIES = ("CameraPosition", "CameraFocalPoint", "CameraViewUp",
+                     "CameraParallelScale", "CameraParallelProjection",
+                     "CameraViewAngle")
+
+
+def first_render(view):
+    """Render once, keeping the camera.  paraview.simple resets the camera
+    at the first Render(); _DisableFirstRenderCameraReset() would avoid that
+    but makes pvpython 5.11 die with an X error (GLXBadContext) at exit."""
+    saved = [(p, list(view.GetPropertyValue(p))
+              if isinstance(view.GetPropertyValue(p), (list, tuple))
+              else view.GetPropertyValue(p)) for p in CAMERA_PROPERTIES]
+    pv.Render(view)
+    for p, v in saved:
+        view.SetPropertyWithName(p, v)
+
+
+def refit_from_state(view, display, info, size, up_arg):
+    """Frame the run and size the particles again after loading a state made
+    by make_states.py (other runs have other spacings, other sizes other
+    aspect ratios).  States from elsewhere keep their camera."""
+    get = view.SMProxy.GetAnnotation
+    key = VIEW_ANNOTATION + "bounds"
+    if not view.SMProxy.HasAnnotation(key):
+        return
+    bounds = info.bounds
+    dim = info.dimension
+    up = up_arg or get(VIEW_ANNOTATION + "up") or "z"
+    factor = float(get(VIEW_ANNOTATION + "radius_factor") or RADIUS_FACTOR)
+    if display.Representation == "Point Gaussian":
+        display.GaussianRadius = factor * info.spacing
+    fit_camera(view, padded(bounds, factor * info.spacing, dim), dim, size, up)
+    view.OrientationAxesVisibility = 1 if dim == 3 else 0
+
+
+def current_field(display):
+    """(field, component) the display colours by, or (None, None)."""
+    ca = display.ColorArrayName
+    if not ca or not ca[1]:
+        return None, None
+    lut = display.LookupTable
+    comp = "Magnitude"
+    if lut is not None and lut.VectorMode == "Component":
+        comp = "XYZ"[min(2, int(lut.VectorComponent))]
+    return ca[1], comp
+
+
+def set_color_range(display, lut, a, reader, indices, steps):
+    if a.range is not None:
+        lo, hi = a.range
+    else:
+        if len(indices) > 1:
+            display.RescaleTransferFunctionToDataRangeOverTime()
+        else:
+            display.RescaleTransferFunctionToDataRange(False, True)
+        lo, hi = lut.RGBPoints[0], lut.RGBPoints[-4]
+    if hi <= lo:                       # a constant field: centre it
+        d = max(abs(lo) * 1e-3, 1e-12)
+        lo, hi = lo - d, hi + d
+    lut.RescaleTransferFunction(lo, hi)
+    pwf = pv.GetOpacityTransferFunction(display.ColorArrayName[1])
+    pwf.RescaleTransferFunction(lo, hi)
+    lut.AutomaticRescaleRangeMode = "Never"
+
+
+def render(a, pvd, steps, indices, outputs, field_arg, arrays):
+    global pv
+    import paraview.simple as simple
+    pv = simple
+    pv.LoadPalette("WhiteBackground")
+    info = RunInfo(steps, a.bounds)
+    size = a.size
+    up = a.up or "z"
+    if a.state:
+        reader, display, view = load_state(a.state, pvd)
+        view.ViewSize = list(size)
+        refit_from_state(view, display, info, size, a.up)
+        field, comp = current_field(display)
+        if field_arg:
+            field, comp = field_arg, a.component
+        if field is None:
+            field, comp = DEFAULT_FIELD, a.component
+            check_field(field, arrays, steps[0][1])
+        if field_arg or a.colormap or display.ColorArrayName[1] != field:
+            lut = color_by(display, view, field, comp, arrays.get(field, 1),
+                           a.colormap)
+        else:
+            lut = pv.GetColorTransferFunction(field)
+        if field not in reader.PointData.keys():
+            raise RenderError("no point array '%s' in this run; available "
+                              "arrays: %s" % (field, ", ".join(
+                                  sorted(reader.PointData.keys()))))
+    else:
+        field = field_arg or DEFAULT_FIELD
+        reader, display, view = build_default(
+            pvd, info, field, a.component, arrays[field],
+            a.colormap or DEFAULT_COLORMAP, size, up)
+        lut = pv.GetColorTransferFunction(field)
+
+    first_render(view)
+    scene = pv.GetAnimationScene()
+    scene.UpdateAnimationUsingDataTimeSteps()
+
+    def go_to(i):
+        t = steps[i][0]
+        scene.AnimationTime = t
+        view.ViewTime = t
+        reader.UpdatePipeline(t)
+
+    go_to(indices[-1] if len(indices) == 1 else indices[0])
+    set_color_range(display, lut, a, reader, indices, steps)
+    written = []
+    for i, out in zip(indices, outputs):
+        go_to(i)
+        d = os.path.dirname(os.path.abspath(out))
+        os.makedirs(d, exist_ok=True)
+        pv.SaveScreenshot(out, view, ImageResolution=list(size),
+                          TransparentBackground=0)
+        if not os.path.isfile(out):
+            raise RenderError("ParaView wrote no image to %s" % out)
+        print("wrote %s (t = %g)" % (out, steps[i][0]))
+        written.append(out)
+    return written
+
+
+def make_mp4(a, pvd, outputs):
+    ffmpeg = shutil.which("ffmpeg")
+    if not ffmpeg:
+        raise RenderError("--mp4: ffmpeg is not installed (apt-get install "
+                          "ffmpeg); the frames are in %s"
+                          % os.path.dirname(os.path.abspath(outputs[0])))
+    first = outputs[0]
+    pattern = re.sub(r"_\d{5}\.png$", "_%05d.png", first)
+    mp4 = a.mp4 or re.sub(r"_\d{5}\.png$", ".mp4", first)
+    cmd = [ffmpeg, "-y", "-loglevel", "error", "-framerate", str(a.fps),
+           "-start_number", "0", "-i", pattern,
+           "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+           "-c:v", "libx264", "-pix_fmt", "yuv420p", mp4]
+    r = subprocess.run(cmd)
+    if r.returncode != 0 or not os.path.isfile(mp4):
+        raise RenderError("ffmpeg failed (%s)" % " ".join(cmd))
+    print("wrote %s" % mp4)
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    a = parse_args(argv)
+    try:
+        pvd = find_pvd(a.run)
+        steps = read_pvd(pvd)
+        if a.state and not os.path.isfile(a.state):
+            raise RenderError("no such state file: %s" % a.state)
+        if a.state:
+            a.state = os.path.abspath(a.state)
+        arrays = vtp_point_arrays(steps[0][1])
+        if a.field:
+            check_field(a.field, arrays, steps[0][1])
+        elif not a.state:
+            check_field(DEFAULT_FIELD, arrays, steps[0][1])
+        indices = choose_steps(a, steps)
+        outputs = output_paths(a, pvd, steps, indices)
+        ensure_paraview(argv)
+        written = render(a, pvd, steps, indices, outputs, a.field, arrays)
+        if a.mp4 is not None:
+            make_mp4(a, pvd, written)
+    except RenderError as e:
+        fail(str(e))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

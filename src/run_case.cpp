@@ -1,0 +1,198 @@
+#include "sph/run_case.hpp"
+
+#include "sph/io/atomic_file.hpp"
+#include "sph/io/pvd_series.hpp"
+#include "sph/io/vtp_io.hpp"
+#include "sph/particle_sources.hpp"
+#include "sph/scene.hpp"
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <ostream>
+#include <sstream>
+
+namespace sph {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string formatDuration(double s) {
+  char buf[32];
+  if (s < 120) std::snprintf(buf, sizeof buf, "%.0f s", s);
+  else std::snprintf(buf, sizeof buf, "%.0f min", s / 60);
+  return buf;
+}
+
+template <int D>
+Vec<D> toVec(const std::vector<Real>& v) {
+  Vec<D> out;
+  for (int d = 0; d < D; ++d) out[d] = v[static_cast<std::size_t>(d)];
+  return out;
+}
+
+// Snapshots, the .pvd series and energy.csv of one run.
+template <int D>
+class RunOutput {
+ public:
+  RunOutput(const std::filesystem::path& dir, const std::string& name, SnapshotInfo info)
+      : dir_(dir), name_(name), info_(info), series_((dir / (name + ".pvd")).string()) {
+    energy_ = "time,kinetic,potential,total\n";
+  }
+
+  void write(const Scene<D>& scene) {
+    char file[64];
+    std::snprintf(file, sizeof file, "_%05ld.vtp", count_);
+    const std::string vtp = name_ + file;
+    info_.time = scene.time();
+    info_.step = scene.stepIndex();
+    writeVtp<D>((dir_ / vtp).string(), scene.particles(), info_);
+    series_.add(scene.time(), vtp);
+    const Energy e = scene.energy();
+    char line[160];
+    std::snprintf(line, sizeof line, "%.10g,%.10g,%.10g,%.10g\n", scene.time(), e.kinetic,
+                  e.potential, e.total());
+    energy_ += line;
+    writeFileAtomically((dir_ / "energy.csv").string(), energy_);
+    ++count_;
+    lastStep_ = scene.stepIndex();
+  }
+
+  long count() const { return count_; }
+  long lastStep() const { return lastStep_; }
+  const std::string& seriesPath() const { return series_.path(); }
+
+ private:
+  std::filesystem::path dir_;
+  std::string name_;
+  SnapshotInfo info_;
+  PvdSeries series_;
+  std::string energy_;
+  long count_ = 0;
+  long lastStep_ = -1;
+};
+
+std::string failureMessage(const StateFailure& f, long step, Real time) {
+  std::ostringstream s;
+  s << "the run blew up at step " << step << ", t = " << time << " s: particle id " << f.id
+    << ": " << f.detail;
+  return s.str();
+}
+
+}  // namespace
+
+template <int D>
+int runCase(const CaseConfig& c, std::ostream& out, std::ostream& err) {
+  InitialState<D> init;
+  try {
+    validateCase(c);
+    init = buildInitialState<D>(c);
+  } catch (const CaseError& e) {
+    err << "sph: error: " << e.what() << "\n";
+    return kBadInput;
+  }
+  if (c.threads > 0) omp_set_num_threads(c.threads);
+  const std::size_t n = init.particles.size();
+  const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
+
+  std::size_t nearWall = 0;
+  for (const auto& x : init.particles.x)
+    nearWall += ((x.array() - lo.array()).minCoeff() < c.h || (hi.array() - x.array()).minCoeff() < c.h);
+
+  SeedWcsphParameters prm{c.h, c.k, c.rho0, c.mu, c.g};
+  Scene<D> scene(std::move(init.particles), SeedWcsph<D>(prm),
+                 DampedReflectingWalls<D>{lo, hi, c.h, c.restitution}, StateCheck<D>{lo, hi},
+                 c.dt, init.startTime);
+  if (auto failure = scene.initialise(!init.massesGiven)) {
+    err << "sph: error: the initial state is not valid: particle id " << failure->id << ": "
+        << failure->detail << "\n";
+    return kBadInput;
+  }
+
+  // Everything that can be checked has been: now, and only now, write.
+  const std::filesystem::path dir(c.output);
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    err << "sph: error: output folder " << c.output << " cannot be created"
+        << (ec ? ": " + ec.message() : std::string()) << "\n";
+    return kBadInput;
+  }
+  if (nearWall > 0)
+    err << "sph: note: " << nearWall << " particle(s) start closer than h = " << c.h
+        << " to a wall; the walls move them to distance h on the first step\n";
+
+  RunOutput<D> output(dir, c.name, SnapshotInfo{0, 0, c.h, c.spacing});
+  const long steps = stepsFor(c);
+  const bool showProgress = c.progress && isatty(STDERR_FILENO);
+  const auto wall0 = Clock::now();
+  double stepSeconds = 0;
+  auto lastProgress = wall0;
+  int status = kSuccess;
+  try {
+    output.write(scene);
+    for (long s = 1; s <= steps; ++s) {
+      const auto t0 = Clock::now();
+      const auto failure = scene.step();
+      stepSeconds += secondsSince(t0);
+      if (failure) {
+        if (showProgress) err << "\n";
+        err << "sph: error: " << failureMessage(*failure, scene.stepIndex(), scene.time())
+            << "\nsph: the outputs up to step " << output.lastStep() << " (t = "
+            << static_cast<Real>(output.lastStep()) * c.dt + init.startTime
+            << " s) are intact in " << output.seriesPath() << "\n";
+        status = kBlewUp;
+        break;
+      }
+      if (s % c.outputEvery == 0 || s == steps) output.write(scene);
+      if (showProgress && secondsSince(lastProgress) > 0.25) {
+        lastProgress = Clock::now();
+        const double elapsed = secondsSince(wall0);
+        char line[160];
+        std::snprintf(line, sizeof line, "\r  t = %.4g / %.4g s   step %ld / %ld   ETA %s   ",
+                      scene.time(), init.startTime + static_cast<Real>(steps) * c.dt, s, steps,
+                      formatDuration(elapsed / static_cast<double>(s) *
+                                     static_cast<double>(steps - s)).c_str());
+        err << line << std::flush;
+      }
+    }
+  } catch (const std::runtime_error& e) {
+    if (showProgress) err << "\n";
+    err << "sph: error: " << e.what() << "\n";
+    return kWriteFailed;
+  }
+  if (showProgress) err << "\r" << std::string(70, ' ') << "\r" << std::flush;
+
+  const double wall = secondsSince(wall0);
+  const long done = scene.stepIndex();
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "sph: %s  (model %s, %dD)\n"
+                "  particles        %zu\n"
+                "  steps            %ld  (dt = %g s)\n"
+                "  simulated time   %g s\n"
+                "  wall time        %.3f s  (stepping %.3f s)\n"
+                "  throughput       %.3g particle-steps/s\n"
+                "  threads          %d\n"
+                "  neighbours       %.1f per particle (mean at the end)\n"
+                "  output           %s  (%ld snapshots)\n",
+                c.name.c_str(), c.model.c_str(), D, n, done, c.dt, scene.time() - init.startTime,
+                wall, stepSeconds,
+                stepSeconds > 0 ? static_cast<double>(n) * static_cast<double>(done) / stepSeconds : 0.0,
+                omp_get_max_threads(), scene.meanNeighbours(), output.seriesPath().c_str(),
+                output.count());
+  out << buf;
+  return status;
+}
+
+template int runCase<2>(const CaseConfig&, std::ostream&, std::ostream&);
+template int runCase<3>(const CaseConfig&, std::ostream&, std::ostream&);
+
+}  // namespace sph

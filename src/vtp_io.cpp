@@ -1,0 +1,162 @@
+#include "sph/io/vtp_io.hpp"
+
+#include "sph/io/atomic_file.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkTypeInt64Array.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace sph {
+namespace {
+
+template <int D>
+vtkNew<vtkDoubleArray> vectorArray(const char* name, const std::vector<Vec<D>>& v) {
+  vtkNew<vtkDoubleArray> arr;
+  arr->SetName(name);
+  arr->SetNumberOfComponents(3);
+  arr->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    double t[3] = {0, 0, 0};
+    for (int d = 0; d < D; ++d) t[d] = v[i][d];
+    arr->SetTypedTuple(static_cast<vtkIdType>(i), t);
+  }
+  return arr;
+}
+
+vtkNew<vtkDoubleArray> scalarArray(const char* name, const std::vector<Real>& s) {
+  vtkNew<vtkDoubleArray> arr;
+  arr->SetName(name);
+  arr->SetNumberOfValues(static_cast<vtkIdType>(s.size()));
+  for (std::size_t i = 0; i < s.size(); ++i) arr->SetValue(static_cast<vtkIdType>(i), s[i]);
+  return arr;
+}
+
+void addFieldValue(vtkFieldData* fd, const char* name, double value) {
+  vtkNew<vtkDoubleArray> arr;
+  arr->SetName(name);
+  arr->SetNumberOfValues(1);
+  arr->SetValue(0, value);
+  fd->AddArray(arr);
+}
+
+void addFieldValue(vtkFieldData* fd, const char* name, long long value) {
+  vtkNew<vtkTypeInt64Array> arr;
+  arr->SetName(name);
+  arr->SetNumberOfValues(1);
+  arr->SetValue(0, value);
+  fd->AddArray(arr);
+}
+
+}  // namespace
+
+template <int D>
+void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo& info) {
+  const auto n = static_cast<vtkIdType>(P.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  for (vtkIdType i = 0; i < n; ++i) {
+    double t[3] = {0, 0, 0};
+    for (int d = 0; d < D; ++d) t[d] = P.x[static_cast<std::size_t>(i)][d];
+    points->SetPoint(i, t);
+  }
+  vtkNew<vtkCellArray> verts;
+  {
+    vtkNew<vtkIdTypeArray> offsets, connectivity;
+    offsets->SetNumberOfValues(n + 1);
+    connectivity->SetNumberOfValues(n);
+    for (vtkIdType i = 0; i <= n; ++i) offsets->SetValue(i, i);
+    for (vtkIdType i = 0; i < n; ++i) connectivity->SetValue(i, i);
+    verts->SetData(offsets, connectivity);
+  }
+
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  poly->SetVerts(verts);
+  vtkPointData* pd = poly->GetPointData();
+  pd->AddArray(vectorArray<D>("velocity", P.v));
+  pd->AddArray(vectorArray<D>("acceleration", P.a));
+  pd->AddArray(scalarArray("density", P.rho));
+  pd->AddArray(scalarArray("pressure", P.p));
+  pd->AddArray(scalarArray("mass", P.m));
+  vtkNew<vtkTypeInt64Array> ids;
+  ids->SetName("id");
+  ids->SetNumberOfValues(n);
+  for (vtkIdType i = 0; i < n; ++i) ids->SetValue(i, P.id[static_cast<std::size_t>(i)]);
+  pd->AddArray(ids);
+  pd->SetActiveScalars("pressure");
+
+  vtkFieldData* fd = poly->GetFieldData();
+  addFieldValue(fd, "TimeValue", info.time);
+  addFieldValue(fd, "step", static_cast<long long>(info.step));
+  addFieldValue(fd, "smoothing_length", info.smoothingLength);
+  addFieldValue(fd, "dimension", static_cast<long long>(D));
+  addFieldValue(fd, "particle_spacing", info.particleSpacing);
+
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  const std::string tmp = temporaryName(path);
+  writer->SetFileName(tmp.c_str());
+  writer->SetInputData(poly);
+  writer->SetDataModeToBinary();
+  writer->SetCompressorTypeToZLib();
+  if (writer->Write() != 1) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + path);
+  }
+  commitTemporary(path);
+}
+
+template void writeVtp<2>(const std::string&, const Particles<2>&, const SnapshotInfo&);
+template void writeVtp<3>(const std::string&, const Particles<3>&, const SnapshotInfo&);
+
+VtpParticles readVtp(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw std::runtime_error("particle file " + path + " does not exist or is not a file");
+  vtkNew<vtkXMLPolyDataReader> reader;
+  if (!reader->CanReadFile(path.c_str()))
+    throw std::runtime_error("particle file " + path + " is not a readable VTK PolyData (.vtp) file");
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* poly = reader->GetOutput();
+  if (poly == nullptr || poly->GetPoints() == nullptr)
+    throw std::runtime_error("particle file " + path + " holds no points");
+
+  VtpParticles out;
+  const vtkIdType n = poly->GetNumberOfPoints();
+  out.x.resize(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i) poly->GetPoint(i, out.x[static_cast<std::size_t>(i)].data());
+
+  vtkPointData* pd = poly->GetPointData();
+  if (vtkDataArray* v = pd->GetArray("velocity"); v && v->GetNumberOfComponents() == 3) {
+    out.hasVelocity = true;
+    out.v.resize(static_cast<std::size_t>(n));
+    for (vtkIdType i = 0; i < n; ++i) v->GetTuple(i, out.v[static_cast<std::size_t>(i)].data());
+  }
+  if (vtkDataArray* m = pd->GetArray("mass"); m && m->GetNumberOfComponents() == 1) {
+    out.m.resize(static_cast<std::size_t>(n));
+    for (vtkIdType i = 0; i < n; ++i) out.m[static_cast<std::size_t>(i)] = m->GetTuple1(i);
+  }
+  if (vtkDataArray* id = pd->GetArray("id"); id && id->GetNumberOfComponents() == 1) {
+    out.id.resize(static_cast<std::size_t>(n));
+    for (vtkIdType i = 0; i < n; ++i)
+      out.id[static_cast<std::size_t>(i)] = static_cast<std::int64_t>(id->GetTuple1(i));
+  }
+  if (vtkDataArray* t = poly->GetFieldData()->GetArray("TimeValue"); t && t->GetNumberOfTuples() > 0)
+    out.time = t->GetTuple1(0);
+  return out;
+}
+
+}  // namespace sph
