@@ -78,35 +78,27 @@ def write_step(path, pts, vel, rho, p, mass, ids, t, step, h, dim, dx):
         sys.exit("cannot write " + path)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("out_dir")
-    ap.add_argument("--name", default="dam_break")
-    ap.add_argument("--steps", type=int, default=5)
-    ap.add_argument("--dim", type=int, choices=(2, 3), default=2)
-    ap.add_argument("--dx", type=float, default=0.02)
-    a = ap.parse_args()
-
-    os.makedirs(a.out_dir, exist_ok=True)
-    dx, rho0, g = a.dx, 1000.0, 9.81
+def generate(out_dir, name="dam_break", steps=5, dim=2, dx=0.02):
+    """Write the series; returns the path of the .pvd."""
+    os.makedirs(out_dir, exist_ok=True)
+    rho0, g = 1000.0, 9.81
     width, height = 0.25, 0.5
     nx, ny = int(round(width / dx)), int(round(height / dx))
-    nz = nx if a.dim == 3 else 1
+    nz = nx if dim == 3 else 1
     base = []
     for k in range(nz):
         for j in range(ny):
             for i in range(nx):
-                z = (k + 0.5) * dx if a.dim == 3 else 0.0
+                z = (k + 0.5) * dx if dim == 3 else 0.0
                 base.append(((i + 0.5) * dx, (j + 0.5) * dx, z))
     n = len(base)
-    mass = [rho0 * dx ** a.dim] * n
+    mass = [rho0 * dx ** dim] * n
     ids = list(range(n))
-    up = 2 if a.dim == 3 else 1
+    up = 2 if dim == 3 else 1
     entries = []
-    for s in range(a.steps):
+    for s in range(steps):
         t = 0.05 * s
-        f = s / max(1, a.steps - 1)        # 0 .. 1: column slumps
+        f = s / max(1, steps - 1)        # 0 .. 1: column slumps
         pts, vel, rho, p = [], [], [], []
         for x in base:
             q = list(x)
@@ -118,19 +110,33 @@ def main():
             hyd = rho0 * g * (height / (1.0 + f) - q[up])
             p.append(hyd - 50.0)
             rho.append(rho0 * (1.0 + hyd / (rho0 * 100.0)))
-        fname = "%s_%05d.vtp" % (a.name, s)
-        write_step(os.path.join(a.out_dir, fname), pts, vel, rho, p, mass,
-                   ids, t, 10 * s, 1.3 * dx, a.dim, dx)
+        fname = "%s_%05d.vtp" % (name, s)
+        write_step(os.path.join(out_dir, fname), pts, vel, rho, p, mass,
+                   ids, t, 10 * s, 1.3 * dx, dim, dx)
         entries.append((t, fname))
 
-    with open(os.path.join(a.out_dir, a.name + ".pvd"), "w") as fh:
+    pvd = os.path.join(out_dir, name + ".pvd")
+    with open(pvd, "w") as fh:
         fh.write('<?xml version="1.0"?>\n<VTKFile type="Collection" '
                  'version="0.1" byte_order="LittleEndian">\n  <Collection>\n')
         for t, fname in entries:
             fh.write('    <DataSet timestep="%.17g" group="" part="0" '
                      'file="%s"/>\n' % (t, fname))
         fh.write('  </Collection>\n</VTKFile>\n')
-    print("wrote %d steps of %d particles to %s" % (a.steps, n, a.out_dir))
+    return pvd, steps, n
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("out_dir")
+    ap.add_argument("--name", default="dam_break")
+    ap.add_argument("--steps", type=int, default=5)
+    ap.add_argument("--dim", type=int, choices=(2, 3), default=2)
+    ap.add_argument("--dx", type=float, default=0.02)
+    a = ap.parse_args()
+    _, steps, n = generate(a.out_dir, a.name, a.steps, a.dim, a.dx)
+    print("wrote %d steps of %d particles to %s" % (steps, n, a.out_dir))
 
 
 if __name__ == "__main__":

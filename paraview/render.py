@@ -391,8 +391,10 @@ def fit_camera(view, bounds, dimension, size, up="z"):
     angle = 30.0
     tan_half = math.tan(math.radians(angle / 2))
     fit_px = min((x1 - x0) * W, (y1 - y0) * H)
-    dist = 2 * radius * H / (fit_px * 2 * tan_half) + radius
-    wpp = 2 * (dist - 0) * tan_half / H     # world units per pixel at focus
+    # the bounding sphere must subtend at most fit_px of the H-pixel view
+    theta = math.atan(tan_half * fit_px / H)
+    dist = radius / math.sin(theta)
+    wpp = 2 * dist * tan_half / H           # world units per pixel at focus
     # camera frame: right = dir_to_camera x up ... built from forward/up
     fwd = [-c for c in direction]
     right = [fwd[1] * upv[2] - fwd[2] * upv[1],
@@ -441,6 +443,8 @@ def color_by(display, view, field, component, ncomp, colormap):
     bar.Title = title
     bar.ComponentTitle = ""
     bar.Orientation = "Vertical"
+    bar.HorizontalTitle = 1
+    bar.TitleJustification = "Left"
     bar.WindowLocation = "Any Location"
     bar.Position = list(LEGEND_POSITION)
     bar.ScalarBarLength = LEGEND_LENGTH
@@ -455,7 +459,7 @@ def color_by(display, view, field, component, ncomp, colormap):
 
 def build_default(pvd, info, field, component, ncomp, colormap, size, up):
     """Reader, display and view of the on-the-fly view.  Also used by
-    make_states.py to build the state files."""
+    make_states.py to build the state files (with a relative pvd)."""
     reader = pv.PVDReader(registrationName=os.path.basename(pvd),
                           FileName=pvd)
     view = pv.CreateView("RenderView")
@@ -471,6 +475,7 @@ def build_default(pvd, info, field, component, ncomp, colormap, size, up):
     ldisp.WindowLocation = "Upper Left Corner"
     ldisp.FontSize = 14
     ldisp.Color = [0.0, 0.0, 0.0]
+    domain_outline(view, info.bounds)
     # Remember what the camera frames, so that renders at another size (or
     # of another run) can frame it again: see refit_from_state().
     ann = view.SMProxy
@@ -482,6 +487,26 @@ def build_default(pvd, info, field, component, ncomp, colormap, size, up):
     fit_camera(view, padded(info.bounds, RADIUS_FACTOR * info.spacing,
                             info.dimension), info.dimension, size, up)
     return reader, display, view
+
+
+def domain_outline(view, bounds):
+    """A thin grey outline of the framed domain box."""
+    box = pv.Box(registrationName="domain")
+    set_box(box, bounds)
+    d = pv.Show(box, view)
+    d.SetRepresentationType("Outline")
+    d.ColorArrayName = ["POINTS", ""]
+    d.AmbientColor = d.DiffuseColor = [0.6, 0.6, 0.6]
+    d.Pickable = 0
+    return box
+
+
+def set_box(box, bounds):
+    box.XLength = bounds[1] - bounds[0]
+    box.YLength = bounds[3] - bounds[2]
+    box.ZLength = bounds[5] - bounds[4]
+    box.Center = [(bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+                  (bounds[4] + bounds[5]) / 2]
 
 
 def state_reader_ids(state):
@@ -514,23 +539,6 @@ def load_state(state, pvd):
     return reader, display, view
 
 
-CAMERA_PROPERTIES = ("CameraPosition", "CameraFocalPoint", "CameraViewUp",
-                     "CameraParallelScale", "CameraParallelProjection",
-                     "CameraViewAngle")
-
-
-def first_render(view):
-    """Render once, keeping the camera.  paraview.simple resets the camera
-    at the first Render(); _DisableFirstRenderCameraReset() would avoid that
-    but makes pvpython 5.11 die with an X error (GLXBadContext) at exit."""
-    saved = [(p, list(view.GetPropertyValue(p))
-              if isinstance(view.GetPropertyValue(p), (list, tuple))
-              else view.GetPropertyValue(p)) for p in CAMERA_PROPERTIES]
-    pv.Render(view)
-    for p, v in saved:
-        view.SetPropertyWithName(p, v)
-
-
 def refit_from_state(view, display, info, size, up_arg):
     """Frame the run and size the particles again after loading a state made
     by make_states.py (other runs have other spacings, other sizes other
@@ -546,6 +554,9 @@ def refit_from_state(view, display, info, size, up_arg):
     if display.Representation == "Point Gaussian":
         display.GaussianRadius = factor * info.spacing
     fit_camera(view, padded(bounds, factor * info.spacing, dim), dim, size, up)
+    for (name, _), src in pv.GetSources().items():
+        if src.GetXMLName() == "Box" and name == "domain":
+            set_box(src, bounds)
     view.OrientationAxesVisibility = 1 if dim == 3 else 0
 
 
@@ -583,6 +594,20 @@ def render(a, pvd, steps, indices, outputs, field_arg, arrays):
     global pv
     import paraview.simple as simple
     pv = simple
+    # Keep our cameras: without this the first pv.Render() resets them.
+    pv._DisableFirstRenderCameraReset()
+    try:
+        return render_views(a, pvd, steps, indices, outputs, field_arg,
+                            arrays)
+    finally:
+        # Delete the views while their OpenGL context is alive: left to the
+        # interpreter's exit, the scalar bar releases its resources after the
+        # context is gone and Xlib kills pvpython (GLXBadContext, status 1).
+        for view in list(pv.GetViews()):
+            pv.Delete(view)
+
+
+def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
     pv.LoadPalette("WhiteBackground")
     info = RunInfo(steps, a.bounds)
     size = a.size
@@ -613,7 +638,7 @@ def render(a, pvd, steps, indices, outputs, field_arg, arrays):
             a.colormap or DEFAULT_COLORMAP, size, up)
         lut = pv.GetColorTransferFunction(field)
 
-    first_render(view)
+    view.StillRender()
     scene = pv.GetAnimationScene()
     scene.UpdateAnimationUsingDataTimeSteps()
 

@@ -58,6 +58,23 @@ void declareKeys(CLI::App& run, sph::CaseConfig& c) {
       ->group("Domain and particles");
 }
 
+// CLI11's messages, reworded where they would not name the key or file.
+std::string explain(const CLI::ParseError& e, const CLI::App& run) {
+  const std::string what = e.what();
+  const std::string extra = "INI was not able to parse ";
+  const std::string caseFile = run.get_config_ptr()->count() ? run.get_config_ptr()->as<std::string>() : "";
+  if (what.rfind(extra, 0) == 0)
+    return "case file " + caseFile + ": unknown key '" + what.substr(extra.size()) +
+           "' ('sph run --help' lists the keys)";
+  if (what.find("no specified config file") != std::string::npos)
+    return "sph run needs a case file: sph run CASE_FILE [--output DIR] [--KEY VALUE ...]";
+  if (dynamic_cast<const CLI::ConversionError*>(&e))
+    return what + " is not a valid value ('sph run --help' gives each key's type and range)";
+  if (dynamic_cast<const CLI::FileError*>(&e))
+    return "case file " + caseFile + " cannot be read (missing or not a file)";
+  return what;
+}
+
 // `sph run ...` is parsed by an App of its own: CLI11 reads config files for
 // the top-level App only, and the case file is that App's config file.
 int runCommand(int argc, char** argv) {
@@ -72,7 +89,7 @@ int runCommand(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return run.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "sph: error: " << e.what() << "\n";
+    std::cerr << "sph: error: " << explain(e, run) << "\n";
     return sph::kBadInput;
   }
   c.caseFile = run.get_config_ptr()->as<std::string>();
@@ -98,7 +115,7 @@ std::string runHelp() {
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "run") return runCommand(argc - 1, argv + 1);
   CLI::App app(kTopHelp, "sph");
-  app.set_version_flag("--version", std::string("sph ") + SPH_VERSION + "\n");
+  app.set_version_flag("--version", std::string("sph ") + SPH_VERSION);
   app.set_help_flag();
   bool help = false;
   app.add_flag("-h,--help", help, "Print this help, with every case key, and exit");

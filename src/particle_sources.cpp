@@ -160,9 +160,33 @@ void addVtp(InitialState<D>& s, const std::string& path) {
       if (f.hasVelocity) v[d] = f.v[i][static_cast<std::size_t>(d)];
     }
     addParticle(s.particles, x, v, withMass ? f.m[i] : 0);
+    if (!f.id.empty()) s.particles.id.back() = f.id[i];
   }
   s.massesGiven = withMass;
   s.startTime = f.time;
+}
+
+template <int D>
+void addGenerated(Particles<D>& P, const CaseConfig& c, const Vec<D>& v0) {
+  if (!c.blockMin.empty()) addBlock(P, toVec<D>(c.blockMin), toVec<D>(c.blockMax), c.spacing, v0);
+  if (!c.discCenter.empty()) addDisc(P, toVec<D>(c.discCenter), c.discRadius, c.spacing, v0);
+  for (std::size_t k = 0; k + D <= c.points.size(); k += D) {
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = c.points[k + static_cast<std::size_t>(d)];
+    addParticle(P, x, v0);
+  }
+}
+
+template <int D>
+void addFile(InitialState<D>& s, const CaseConfig& c) {
+  const std::filesystem::path path(c.particleFile);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw CaseError("particle_file " + c.particleFile + " does not exist or is not a file");
+  const std::string ext = path.extension().string();
+  if (ext == ".csv") addCsv(s.particles, c.particleFile);
+  else if (ext == ".vtp") addVtp(s, c.particleFile);
+  else throw CaseError("particle_file " + c.particleFile + " must end in .csv or .vtp");
 }
 
 }  // namespace
@@ -225,25 +249,8 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   InitialState<D> s;
   Particles<D>& P = s.particles;
   const Vec<D> v0 = c.velocity.empty() ? Vec<D>::Zero() : toVec<D>(c.velocity);
-  if (!c.blockMin.empty()) addBlock(P, toVec<D>(c.blockMin), toVec<D>(c.blockMax), c.spacing, v0);
-  if (!c.discCenter.empty()) addDisc(P, toVec<D>(c.discCenter), c.discRadius, c.spacing, v0);
-  for (std::size_t k = 0; k + D <= c.points.size(); k += D) {
-    Vec<D> x;
-    for (int d = 0; d < D; ++d) x[d] = c.points[k + static_cast<std::size_t>(d)];
-    addParticle(P, x, v0);
-  }
-  if (!c.particleFile.empty()) {
-    if (!P.x.empty())
-      throw CaseError("particle_file cannot be combined with block, disc or points generators");
-    const std::filesystem::path path(c.particleFile);
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-      throw CaseError("particle_file " + c.particleFile + " does not exist or is not a file");
-    const std::string ext = path.extension().string();
-    if (ext == ".csv") addCsv(P, c.particleFile);
-    else if (ext == ".vtp") addVtp(s, c.particleFile);
-    else throw CaseError("particle_file " + c.particleFile + " must end in .csv or .vtp");
-  }
+  if (c.particleFile.empty()) addGenerated(P, c, v0);
+  else addFile(s, c);
   if (P.x.empty())
     throw CaseError("the case has zero particles: give block_min/block_max, disc_center/disc_radius, "
                     "points or particle_file");

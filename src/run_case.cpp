@@ -125,6 +125,9 @@ int runCase(const CaseConfig& c, std::ostream& out, std::ostream& err) {
         << (ec ? ": " + ec.message() : std::string()) << "\n";
     return kBadInput;
   }
+  if (!c.particleFile.empty() && (!c.blockMin.empty() || !c.discCenter.empty() || !c.points.empty()))
+    err << "sph: note: particles come from particle_file " << c.particleFile
+        << "; the case's block, disc and points generators are not used\n";
   if (nearWall > 0)
     err << "sph: note: " << nearWall << " particle(s) start closer than h = " << c.h
         << " to a wall; the walls move them to distance h on the first step\n";

@@ -60,7 +60,7 @@ class HashGrid {
     bucket_.resize(n);
     order_.resize(n);
     setStrides(x);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) bucket_[i] = bucketOf(cellOf(x[i]));
 
     // Counting sort, stable: count, inclusive prefix sum (cellStart_[b] = end

@@ -33,7 +33,7 @@ class NeighbourList {
     begin_.resize(n + 1);
     chunkStart_.assign(static_cast<std::size_t>(threads) + 1, n);
     usedChunks_ = 0;
-#pragma omp parallel
+#pragma omp parallel if (n >= kMinParallelSize)
     {
       const auto t = static_cast<std::size_t>(omp_get_thread_num());
       const auto nt = static_cast<std::size_t>(omp_get_num_threads());

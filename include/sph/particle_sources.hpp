@@ -4,7 +4,9 @@
 // Lattice generators put particles at cell centres: a block [min, max] with
 // spacing dx holds round((max - min)/dx) particles per axis at
 // min + (i + 1/2) dx. The disc/ball holds the lattice points c + i dx with
-// |x - c| <= R.
+// |x - c| <= R. A particle_file, when given, replaces the generators (so a
+// case continues from any of its own snapshots with one extra flag); ids,
+// masses and the time come from a .vtp when it has them.
 #pragma once
 
 #include "sph/case_config.hpp"

@@ -73,7 +73,7 @@ struct Particles {
     if (field.empty()) return;
     scratch.resize(field.size());
     const std::size_t n = field.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t k = 0; k < n; ++k) scratch[k] = field[order[k]];
     field.swap(scratch);
   }

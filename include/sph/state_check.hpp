@@ -28,7 +28,7 @@ struct StateCheck {
   std::optional<StateFailure> operator()(const Particles<D>& P) const {
     const std::size_t n = P.size();
     std::size_t first = n;
-#pragma omp parallel for schedule(static) reduction(min : first)
+#pragma omp parallel for schedule(static) reduction(min : first) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i)
       if (!ok(P, i) && i < first) first = i;
     if (first == n) return std::nullopt;

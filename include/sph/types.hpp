@@ -18,6 +18,10 @@ using Vec = Eigen::Matrix<Real, D, 1>;
 template <int D>
 using IVec = Eigen::Matrix<std::int64_t, D, 1>;
 
+// Loops over fewer particles than this run on one thread: below it, starting
+// an OpenMP team costs more than the loop (a 4-particle case ran 40x slower).
+constexpr std::size_t kMinParallelSize = 512;
+
 // The axis gravity acts along: y in 2D, z in 3D ("up" is the last axis).
 template <int D>
 constexpr int verticalAxis = D - 1;

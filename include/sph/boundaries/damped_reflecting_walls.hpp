@@ -20,7 +20,7 @@ struct DampedReflectingWalls {
 
   void apply(Particles<D>& P) const {
     const std::size_t n = P.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) {
       for (int d = 0; d < D; ++d) {
         const Real lower = lo[d] + distance, upper = hi[d] - distance;

@@ -24,7 +24,7 @@ struct LeapFrog {
     const std::size_t n = P.size();
     const Real kick = started ? dt : dt / 2;
     const bool fromV = !started;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) {
       P.vHalf[i] = (fromV ? P.v[i] : P.vHalf[i]) + kick * P.a[i];
       P.x[i] += dt * P.vHalf[i];
@@ -36,7 +36,7 @@ struct LeapFrog {
 
   void closingKick(Particles<D>& P, Real dt) const {
     const std::size_t n = P.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) P.v[i] = P.vHalf[i] + (dt / 2) * P.a[i];
   }
 };

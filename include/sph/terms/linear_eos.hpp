@@ -18,7 +18,7 @@ struct LinearEos {
 template <int D, class Eos>
 void computePressure(Particles<D>& P, const Eos& eos) {
   const std::size_t n = P.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
   for (std::size_t i = 0; i < n; ++i) P.p[i] = eos.pressure(P.rho[i]);
 }
 

@@ -35,7 +35,7 @@ void computeAccelerations(Particles<D>& P, const NeighbourList<D>& neighbours, R
                           const PairTerms& pairTerms, const BodyTerms& bodyTerms) {
   const std::size_t n = P.size();
   const Real invSupport = 1 / support;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
   for (std::size_t i = 0; i < n; ++i) {
     Vec<D> F = Vec<D>::Zero();
     const Vec<D> xi = P.x[i];

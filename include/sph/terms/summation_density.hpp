@@ -14,7 +14,7 @@ template <int D, class Kernel>
 void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours,
                              const Kernel& W) {
   const std::size_t n = P.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec<D> xi = P.x[i];
     Real rho_i = P.m[i] * W.densityAtZero();

@@ -1,0 +1,114 @@
+// Bad input never runs and never writes: each case of the catalogue gives one
+// line naming the key or file, a non-zero exit status, and no output folder.
+#include "test_support.hpp"
+
+using namespace sph;
+
+namespace {
+
+// Run `sph run` with the given arguments and an output folder inside a fresh
+// scratch folder; require failure, a one-line message containing `expected`,
+// and nothing written.
+void expectRejected(const std::vector<std::string>& args, const std::string& expected,
+                    const std::string& caseName = "dam_break") {
+  const auto dir = test::scratchDir("bad");
+  const auto out = dir / "out";
+  std::vector<std::string> all{"run"};
+  if (!caseName.empty()) all.push_back(test::caseFile(caseName));
+  all.insert(all.end(), {"--output", out.string()});
+  all.insert(all.end(), args.begin(), args.end());
+  const auto r = test::runSph(all);
+  BOOST_TEST_CONTEXT("arguments ending " << args.back()) {
+    BOOST_TEST(r.exitCode == 2, r.output);
+    BOOST_TEST(r.output.find(expected) != std::string::npos, "message was: " << r.output);
+    BOOST_TEST(r.output.rfind("sph: error: ", 0) == 0, r.output);
+    BOOST_TEST(std::count(r.output.begin(), r.output.end(), '\n') == 1, r.output);
+    BOOST_TEST(!std::filesystem::exists(out));
+  }
+}
+
+std::string writeFile(const std::string& name, const std::string& text) {
+  const auto dir = test::scratchDir("input_" + name);
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(bad_input)
+
+BOOST_AUTO_TEST_CASE(unknown_key_in_case_file) {
+  const std::string file = writeFile("typo.case", "points = [0.5, 0.5]\nviscosity = 3\n");
+  const auto out = test::scratchDir("bad_typo") / "out";
+  const auto r = test::runSph({"run", file, "--output", out.string()});
+  BOOST_TEST(r.exitCode == 2);
+  BOOST_TEST(r.output.find("unknown key 'viscosity'") != std::string::npos, r.output);
+  BOOST_TEST(!std::filesystem::exists(out));
+}
+
+BOOST_AUTO_TEST_CASE(unknown_flag) { expectRejected({"--viscosity", "3"}, "--viscosity"); }
+BOOST_AUTO_TEST_CASE(wrong_type) { expectRejected({"--h", "abc"}, "--h = abc"); }
+BOOST_AUTO_TEST_CASE(h_not_positive) { expectRejected({"--h", "0"}, "h = 0 is out of range: it must be > 0"); }
+BOOST_AUTO_TEST_CASE(dt_not_positive) { expectRejected({"--dt", "-1e-4"}, "dt = -0.0001 is out of range: it must be > 0"); }
+BOOST_AUTO_TEST_CASE(rho0_not_positive) { expectRejected({"--rho0", "0"}, "rho0 = 0 is out of range"); }
+BOOST_AUTO_TEST_CASE(restitution_outside_unit_interval) {
+  expectRejected({"--restitution", "1.5"}, "restitution = 1.5 is out of range: it must be in [0, 1]");
+  expectRejected({"--restitution", "-0.1"}, "restitution = -0.1 is out of range");
+}
+BOOST_AUTO_TEST_CASE(output_every_below_one) { expectRejected({"--output_every", "0"}, "output_every = 0"); }
+BOOST_AUTO_TEST_CASE(unknown_model) { expectRejected({"--model", "sph2000"}, "model = \"sph2000\" is not known"); }
+BOOST_AUTO_TEST_CASE(dimension_out_of_range) { expectRejected({"--dimension", "4"}, "dimension = 4"); }
+BOOST_AUTO_TEST_CASE(vector_of_wrong_length) { expectRejected({"--domain_min", "0"}, "domain_min has 1 values"); }
+
+BOOST_AUTO_TEST_CASE(particle_outside_domain) {
+  expectRejected({"--points", "1.5", "0.5"}, "outside the domain", "one_particle");
+  expectRejected({"--block_max", "1.2", "0.5"}, "outside the domain");
+}
+
+BOOST_AUTO_TEST_CASE(zero_particles) {
+  const std::string file = writeFile("empty.case", "# no particles at all\nh = 0.01\n");
+  const auto out = test::scratchDir("bad_empty") / "out";
+  const auto r = test::runSph({"run", file, "--output", out.string()});
+  BOOST_TEST(r.exitCode == 2);
+  BOOST_TEST(r.output.find("zero particles") != std::string::npos, r.output);
+  BOOST_TEST(!std::filesystem::exists(out));
+}
+
+BOOST_AUTO_TEST_CASE(missing_particle_file) {
+  expectRejected({"--particle_file", "/nonexistent/particles.csv"},
+                 "particle_file /nonexistent/particles.csv does not exist");
+}
+
+BOOST_AUTO_TEST_CASE(malformed_particle_files) {
+  expectRejected({"--particle_file", writeFile("nohead.csv", "1,2\n3,4\n")}, "needs columns x, y");
+  expectRejected({"--particle_file", writeFile("text.csv", "x,y\n0.5,abc\n")}, "line 2: column 2 is not a finite number");
+  expectRejected({"--particle_file", writeFile("fake.vtp", "not xml at all")}, "fake.vtp");
+  expectRejected({"--particle_file", writeFile("p.txt", "x,y\n0.5,0.5\n")}, "must end in .csv or .vtp");
+}
+
+BOOST_AUTO_TEST_CASE(output_folder_cannot_be_created) {
+  const std::string file = writeFile("a_file", "x");
+  const auto r = test::runSph({"run", test::caseFile("one_particle"), "--output", file + "/sub"});
+  BOOST_TEST(r.exitCode == 2);
+  BOOST_TEST(r.output.find("output folder " + file + "/sub cannot be created") != std::string::npos, r.output);
+}
+
+BOOST_AUTO_TEST_CASE(missing_case_file) {
+  const auto r = test::runSph({"run", "/nonexistent/dam.case"});
+  BOOST_TEST(r.exitCode == 2);
+  BOOST_TEST(r.output.find("case file /nonexistent/dam.case cannot be read") != std::string::npos, r.output);
+}
+
+BOOST_AUTO_TEST_CASE(help_and_version_succeed) {
+  const auto help = test::runSph({"--help"});
+  BOOST_TEST(help.exitCode == 0);
+  for (const char* key : {"--h ", "--k ", "--rho0", "--mu", "--restitution", "--dt", "--end_time",
+                          "--output_every", "--block_min", "--disc_radius", "--points", "--particle_file"})
+    BOOST_TEST(help.output.find(key) != std::string::npos, "help lacks " << key);
+  const auto version = test::runSph({"--version"});
+  BOOST_TEST(version.exitCode == 0);
+  BOOST_TEST(version.output == std::string("sph ") + SPH_VERSION + "\n");
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,172 @@
+// Neighbour search (hashed grid + neighbour list) against an O(N^2)
+// brute-force search: random, clustered and sparse points, points on cell
+// faces, negative coordinates, hash collisions, and after a re-sort.
+#include "sph/hash_grid.hpp"
+#include "sph/neighbour_list.hpp"
+#include "sph/particles.hpp"
+
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <random>
+#include <set>
+#include <vector>
+
+using namespace sph;
+
+namespace {
+
+template <int D>
+using PairSet = std::set<std::pair<std::int64_t, std::int64_t>>;
+
+// Pairs (id_i, id_j), i != j, with |x_i - x_j| < radius.
+template <int D>
+PairSet<D> bruteForce(const std::vector<Vec<D>>& x, const std::vector<std::int64_t>& id, Real radius) {
+  PairSet<D> pairs;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (std::size_t j = 0; j < x.size(); ++j)
+      if (i != j && (x[i] - x[j]).squaredNorm() < radius * radius) pairs.insert({id[i], id[j]});
+  return pairs;
+}
+
+// Sort by cell, build the list, and return its pairs by id. Also checks that
+// each particle's neighbours are listed once.
+template <int D>
+PairSet<D> gridSearch(Particles<D>& P, Real radius) {
+  HashGrid<D> grid(radius);
+  grid.build(P.x);
+  P.permute(grid.order());
+  NeighbourList<D> list;
+  list.build(grid, P.x, radius);
+  PairSet<D> pairs;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < P.size(); ++i)
+    list.forEach(i, [&](std::uint32_t j) {
+      pairs.insert({P.id[i], P.id[j]});
+      ++count;
+    });
+  BOOST_TEST(count == pairs.size());  // no duplicates
+  BOOST_TEST(count == list.pairCount());
+  return pairs;
+}
+
+template <int D>
+Particles<D> particlesAt(const std::vector<Vec<D>>& x) {
+  Particles<D> P;
+  P.x = x;
+  for (std::size_t i = 0; i < x.size(); ++i) P.id.push_back(static_cast<std::int64_t>(i));
+  P.resize(x.size());
+  return P;
+}
+
+template <int D>
+void checkAgainstBruteForce(const std::vector<Vec<D>>& x, Real radius) {
+  Particles<D> P = particlesAt<D>(x);
+  const PairSet<D> expected = bruteForce<D>(P.x, P.id, radius);
+  BOOST_TEST_REQUIRE(!expected.empty());
+  const PairSet<D> found = gridSearch<D>(P, radius);
+  BOOST_TEST((found == expected));
+  // Move every particle a little and search again on the re-sorted arrays.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<Real> jitter(-0.3 * radius, 0.3 * radius);
+  for (auto& xi : P.x)
+    for (int d = 0; d < D; ++d) xi[d] += jitter(rng);
+  const PairSet<D> expected2 = bruteForce<D>(P.x, P.id, radius);
+  BOOST_TEST((gridSearch<D>(P, radius) == expected2));
+}
+
+template <int D>
+std::vector<Vec<D>> uniform(std::size_t n, Real lo, Real hi, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<Real> u(lo, hi);
+  std::vector<Vec<D>> x(n);
+  for (auto& xi : x)
+    for (int d = 0; d < D; ++d) xi[d] = u(rng);
+  return x;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(hash_grid)
+
+BOOST_AUTO_TEST_CASE(random_points_2d) { checkAgainstBruteForce<2>(uniform<2>(2000, 0, 1, 1), 0.03); }
+BOOST_AUTO_TEST_CASE(random_points_3d) { checkAgainstBruteForce<3>(uniform<3>(2000, 0, 1, 2), 0.08); }
+
+BOOST_AUTO_TEST_CASE(negative_coordinates_3d) {
+  checkAgainstBruteForce<3>(uniform<3>(1500, -2.0, -1.2, 3), 0.1);
+}
+
+// Points on a lattice whose spacing is the cell size: many pairs at exactly
+// the radius (excluded) and points exactly on cell faces.
+BOOST_AUTO_TEST_CASE(points_on_cell_faces_2d) {
+  std::vector<Vec<2>> x;
+  const Real r = 0.1;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) {
+      x.push_back(Vec<2>(i * r, j * r));
+      x.push_back(Vec<2>(i * r + 0.5 * r, j * r + 0.999999 * r));
+    }
+  checkAgainstBruteForce<2>(x, r);
+}
+
+BOOST_AUTO_TEST_CASE(points_on_cell_faces_3d) {
+  std::vector<Vec<3>> x;
+  const Real r = 0.25;
+  for (int i = -4; i < 4; ++i)
+    for (int j = -4; j < 4; ++j)
+      for (int k = -4; k < 4; ++k) {
+        x.push_back(Vec<3>(i * r, j * r, k * r));
+        x.push_back(Vec<3>(i * r + 0.5 * r, j * r, k * r + 0.75 * r));
+      }
+  checkAgainstBruteForce<3>(x, r);
+}
+
+// A dense Gaussian cluster next to a few distant particles.
+BOOST_AUTO_TEST_CASE(clustered_points_2d) {
+  std::mt19937 rng(11);
+  std::normal_distribution<Real> n(0.5, 0.02);
+  std::vector<Vec<2>> x;
+  for (int i = 0; i < 1500; ++i) x.push_back(Vec<2>(n(rng), n(rng)));
+  for (int i = 0; i < 10; ++i) x.push_back(Vec<2>(3.0 + 0.01 * i, -5.0));
+  checkAgainstBruteForce<2>(x, 0.01);
+}
+
+// Few particles spread over a box of ~1e8 cells: the table (64 buckets) is
+// far smaller than the box, so many cells share buckets.
+BOOST_AUTO_TEST_CASE(sparse_points_with_hash_collisions_2d) {
+  std::vector<Vec<2>> x = uniform<2>(30, 0, 100, 5);
+  const std::size_t n = x.size();
+  for (std::size_t i = 0; i < n; ++i) x.push_back(x[i] + Vec<2>(0.004, 0.003));
+  checkAgainstBruteForce<2>(x, 0.01);
+}
+
+BOOST_AUTO_TEST_CASE(sparse_points_with_hash_collisions_3d) {
+  std::vector<Vec<3>> x = uniform<3>(30, -50, 50, 6);
+  const std::size_t n = x.size();
+  for (std::size_t i = 0; i < n; ++i) x.push_back(x[i] + Vec<3>(0.004, -0.003, 0.002));
+  checkAgainstBruteForce<3>(x, 0.01);
+}
+
+// The sort is a permutation: every particle keeps its data.
+BOOST_AUTO_TEST_CASE(resort_keeps_particle_data) {
+  Particles<2> P = particlesAt<2>(uniform<2>(500, 0, 1, 9));
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    P.v[i] = Vec<2>(static_cast<Real>(i), -static_cast<Real>(i));
+    P.m[i] = 1.0 + static_cast<Real>(i);
+  }
+  const std::vector<Vec<2>> x0 = P.x;
+  HashGrid<2> grid(0.05);
+  grid.build(P.x);
+  P.permute(grid.order());
+  std::vector<bool> seen(P.size(), false);
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    const auto i = static_cast<std::size_t>(P.id[k]);
+    BOOST_TEST(!seen[i]);
+    seen[i] = true;
+    BOOST_TEST((P.x[k] == x0[i]));
+    BOOST_TEST(P.v[k][0] == static_cast<Real>(i));
+    BOOST_TEST(P.m[k] == 1.0 + static_cast<Real>(i));
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,89 @@
+// Helpers shared by the test suites: small scenes built in code, running the
+// real `sph` executable, and scratch folders.
+#pragma once
+
+#include "sph/scene.hpp"
+
+#include <boost/test/unit_test.hpp>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+namespace sph::test {
+
+// A scene from explicit positions (and velocities), with the seed model.
+// Masses are scaled to rho0 unless `mass` > 0 is given. Walls on the unit
+// box unless `walls` is false (then the domain is [-10, 10]^D).
+template <int D>
+Scene<D> makeScene(const std::vector<Vec<D>>& x, const std::vector<Vec<D>>& v,
+                   SeedWcsphParameters prm, bool walls, Real dt, Real mass = 0,
+                   Real restitution = 0.5) {
+  Particles<D> P;
+  P.x = x;
+  P.v = v.empty() ? std::vector<Vec<D>>(x.size(), Vec<D>::Zero()) : v;
+  P.m.assign(x.size(), mass);
+  for (std::size_t i = 0; i < x.size(); ++i) P.id.push_back(static_cast<std::int64_t>(i));
+  P.resize(x.size());
+  const Vec<D> lo = Vec<D>::Constant(walls ? 0 : -10), hi = Vec<D>::Constant(walls ? 1 : 10);
+  std::optional<DampedReflectingWalls<D>> w;
+  if (walls) w = DampedReflectingWalls<D>{lo, hi, prm.h, restitution};
+  Scene<D> scene(std::move(P), SeedWcsph<D>(prm), w, StateCheck<D>{lo, hi}, dt);
+  BOOST_REQUIRE(!scene.initialise(mass <= 0));
+  return scene;
+}
+
+// Index (in the scene's current, sorted order) of the particle with this id.
+template <int D>
+std::size_t indexOf(const Scene<D>& s, std::int64_t id) {
+  const auto& ids = s.particles().id;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    if (ids[i] == id) return i;
+  BOOST_FAIL("no particle with id " << id);
+  return 0;
+}
+
+// A fresh, empty scratch folder under the system temp folder.
+inline std::filesystem::path scratchDir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("sph_test_" + std::to_string(::getpid()) + "_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+struct Result {
+  int exitCode;
+  std::string output;  // stdout and stderr together
+};
+
+// Run the real sph executable with the given arguments (shell-quoted here).
+inline Result runSph(const std::vector<std::string>& args) {
+  std::string cmd = std::string("'") + SPH_EXECUTABLE + "'";
+  for (const auto& a : args) cmd += " '" + a + "'";
+  cmd += " 2>&1";
+  Result r{-1, ""};
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  BOOST_REQUIRE(pipe != nullptr);
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.output += buf.data();
+  const int status = ::pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline std::string caseFile(const std::string& name) {
+  return std::string(SPH_SOURCE_DIR) + "/cases/" + name + ".case";
+}
+
+inline std::string referenceFile(const std::string& name) {
+  return std::string(SPH_REFERENCE_DIR) + "/" + name;
+}
+
+}  // namespace sph::test
