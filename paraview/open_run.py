@@ -1,6 +1,6 @@
 """Open any sph run in the ParaView GUI with a state file of this folder.
 
-    SPH_RUN=runs/droplet paraview --script=paraview/open_run.py
+    SPH_RUN=runs/droplet paraview --script=paraview/open_run.py   # from the repo root
     SPH_RUN=/tmp/out SPH_STATE=paraview/water2d.pvsm paraview --script=paraview/open_run.py
 
 SPH_RUN is the run folder (or its .pvd); SPH_STATE the state file (default:
@@ -13,8 +13,21 @@ File > Load State does the same for runs whose .pvd has the state's name.
 import os
 import sys
 
-HERE = os.path.dirname(os.path.abspath(
-    __file__ if "__file__" in globals() else sys.argv[0]))
+
+
+def _here():
+    """This folder: the GUI runs --script files without __file__, so fall
+    back on SPH_PARAVIEW_DIR or ./paraview (the repository root's)."""
+    if "__file__" in globals():
+        return os.path.dirname(os.path.abspath(__file__))
+    for d in (os.environ.get("SPH_PARAVIEW_DIR"), "paraview", "."):
+        if d and os.path.isfile(os.path.join(d, "render.py")):
+            return os.path.abspath(d)
+    raise SystemExit("open_run.py: run it from the repository root or set "
+                     "SPH_PARAVIEW_DIR to the paraview/ folder")
+
+
+HERE = _here()
 sys.path.insert(0, HERE)
 import render  # noqa: E402
 import paraview.simple as pv  # noqa: E402

@@ -14,6 +14,8 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <malloc.h>
+
 #include <filesystem>
 #include <stdexcept>
 
@@ -58,10 +60,25 @@ void addFieldValue(vtkFieldData* fd, const char* name, long long value) {
   fd->AddArray(arr);
 }
 
+
+// zlib allocates ~300 KB per compressed block; above glibc's mmap threshold
+// each block then costs an mmap, page faults and an munmap with TLB
+// shoot-downs (18 ms per 2k-particle snapshot, 4x the stepping). Serving
+// such buffers from the heap, and not trimming it, removes that.
+void keepCompressionBuffersOnHeap() {
+  static const bool once = [] {
+    mallopt(M_MMAP_THRESHOLD, 64 << 20);
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);
+    return true;
+  }();
+  (void)once;
+}
+
 }  // namespace
 
 template <int D>
 void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo& info) {
+  keepCompressionBuffersOnHeap();
   const auto n = static_cast<vtkIdType>(P.size());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -108,8 +125,10 @@ void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo
   const std::string tmp = temporaryName(path);
   writer->SetFileName(tmp.c_str());
   writer->SetInputData(poly);
-  writer->SetDataModeToBinary();
+  writer->SetDataModeToAppended();  // raw binary after the XML header
+  writer->EncodeAppendedDataOff();
   writer->SetCompressorTypeToZLib();
+  writer->SetCompressionLevel(1);  // doubles barely compress harder; level 1 is 3x faster
   if (writer->Write() != 1) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
