@@ -7,17 +7,17 @@
 
 namespace sph {
 
-void PvdSeries::add(Real time, const std::string& relativeFile) {
-  entries_.emplace_back(time, relativeFile);
+void PvdSeries::add(Real time, long step, const std::string& relativeFile) {
+  entries_.push_back({time, step, relativeFile});
   std::string xml =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       "  <Collection>\n";
   char line[64];
-  for (const auto& [t, file] : entries_) {
-    std::snprintf(line, sizeof line, "%.17g", t);
-    xml += "    <DataSet timestep=\"" + std::string(line) + "\" group=\"\" part=\"0\" file=\"" +
-           file + "\"/>\n";
+  for (const Entry& e : entries_) {
+    std::snprintf(line, sizeof line, "%.17g", e.time);
+    xml += "    <DataSet timestep=\"" + std::string(line) + "\" step=\"" + std::to_string(e.step) +
+           "\" group=\"\" part=\"0\" file=\"" + e.file + "\"/>\n";
   }
   xml += "  </Collection>\n</VTKFile>\n";
   writeFileAtomically(path_, xml);

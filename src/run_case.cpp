@@ -54,7 +54,7 @@ class RunOutput {
     info_.time = scene.time();
     info_.step = scene.stepIndex();
     writeVtp<D>((dir_ / vtp).string(), scene.particles(), info_);
-    series_.add(scene.time(), vtp);
+    series_.add(scene.time(), scene.stepIndex(), vtp);
     const Energy e = scene.energy();
     char line[160];
     std::snprintf(line, sizeof line, "%.10g,%.10g,%.10g,%.10g\n", scene.time(), e.kinetic,

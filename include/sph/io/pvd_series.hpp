@@ -17,13 +17,19 @@ class PvdSeries {
   explicit PvdSeries(std::string path) : path_(std::move(path)) {}
 
   // Append a dataset (file name relative to the .pvd) and rewrite the file.
-  void add(Real time, const std::string& relativeFile);
+  // `step` is written as an extra attribute; ParaView's PVD reader ignores it.
+  void add(Real time, long step, const std::string& relativeFile);
 
   const std::string& path() const { return path_; }
 
  private:
   std::string path_;
-  std::vector<std::pair<Real, std::string>> entries_;
+  struct Entry {
+    Real time;
+    long step;
+    std::string file;
+  };
+  std::vector<Entry> entries_;
 };
 
 }  // namespace sph
