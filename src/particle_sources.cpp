@@ -32,13 +32,6 @@ void requireSize(const char* key, const std::vector<Real>& v, int dim, bool allo
 }
 
 template <int D>
-Vec<D> toVec(const std::vector<Real>& v) {
-  Vec<D> out;
-  for (int d = 0; d < D; ++d) out[d] = v[static_cast<std::size_t>(d)];
-  return out;
-}
-
-template <int D>
 void addParticle(Particles<D>& P, const Vec<D>& x, const Vec<D>& v, Real m = 0) {
   P.x.push_back(x);
   P.v.push_back(v);

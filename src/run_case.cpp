@@ -31,13 +31,6 @@ std::string formatDuration(double s) {
   return buf;
 }
 
-template <int D>
-Vec<D> toVec(const std::vector<Real>& v) {
-  Vec<D> out;
-  for (int d = 0; d < D; ++d) out[d] = v[static_cast<std::size_t>(d)];
-  return out;
-}
-
 // Snapshots, the .pvd series and energy.csv of one run.
 template <int D>
 class RunOutput {

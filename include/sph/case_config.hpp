@@ -58,6 +58,14 @@ struct CaseConfig {
 
 void validateCase(const CaseConfig& c);
 
+// The first D values of a validated vector key as a Vec<D>.
+template <int D>
+Vec<D> toVec(const std::vector<Real>& v) {
+  Vec<D> out;
+  for (int d = 0; d < D; ++d) out[d] = v[static_cast<std::size_t>(d)];
+  return out;
+}
+
 // Number of steps that reach end_time: ceil(end_time / dt) up to round-off.
 long stepsFor(const CaseConfig& c);
 
