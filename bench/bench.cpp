@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
           sph::Scene<2> scene(std::move(init.particles),
                               sph::SeedWcsph<2>({c.h, c.k, c.rho0, c.mu, c.g}),
                               sph::DampedReflectingWalls<2>{lo, hi, c.h, c.restitution},
-                              sph::StateCheck<2>{lo, hi}, c.dt);
+                              sph::StateCheck<2>{lo, hi}, sph::TimeStepControl{c.dt});
           scene.initialise(true);
           scene.step();  // warm-up: first-touch, grid table
           const auto t0 = std::chrono::steady_clock::now();

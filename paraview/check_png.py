@@ -33,9 +33,9 @@ except ImportError as e:
     sys.exit("check_png.py: needs numpy and VTK's Python modules (%s); run "
              "it with /usr/bin/python3 from Debian (python3-paraview)" % e)
 
-# Same layout as render.py (normalised, origin lower left).
-LEGEND_X = 0.785      # the legend strip starts here
-ANNOTATION_Y = 0.90   # the time annotation is above this
+import os
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from render import Layout  # noqa: E402  (the layout render.py draws)
 COLOURED = 40         # min channel spread of a particle pixel (grey < this)
 BACKGROUND_TOL = 30   # max channel difference still counted as background
 
@@ -83,8 +83,10 @@ def main(argv=None):
     not_bg = np.abs(img - bg).max(axis=2) > BACKGROUND_TOL
     coloured = not_bg & (spread >= COLOURED)
 
+    lay = Layout(W, H)
+    legend_x = int(lay.legend_x * W)
     plot = np.zeros((H, W), bool)
-    plot[int(round((1 - ANNOTATION_Y) * H)):, :int(LEGEND_X * W)] = True
+    plot[int(round((1 - lay.annotation_y) * H)):, :legend_x] = True
     particles = coloured & plot
     n = int(particles.sum())
     print("particle pixels: %d (%.2f%% of the plot area)"
@@ -107,9 +109,9 @@ def main(argv=None):
     if a.min_span is not None and n:
         # The colour bar: the legend column with the most distinct colours.
         legend = coloured.copy()
-        legend[:, :int(LEGEND_X * W)] = False
+        legend[:, :legend_x] = False
         best, best_count = None, 0
-        for c in range(int(LEGEND_X * W), W):
+        for c in range(legend_x, W):
             rows = np.nonzero(legend[:, c])[0]
             if len(rows) < 10:
                 continue
@@ -118,7 +120,7 @@ def main(argv=None):
                 best, best_count = c, k
         if best is None or best_count < 16:
             failures.append("no colour legend found right of x = %d"
-                            % int(LEGEND_X * W))
+                            % legend_x)
         else:
             rows = np.nonzero(legend[:, best])[0]
             bar = img[rows, best]                 # top (max) to bottom (min)

@@ -28,16 +28,18 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import render  # noqa: E402
 
-# state name -> (case, field, colour preset)
+# state name -> (case, field, colour preset).  Water cases show pressure;
+# the few-particle cases show the speed (their pressure is zero until two
+# particles meet).
 STATES = {
     "water2d": ("dam_break", "pressure", "Turbo"),
     "dam_break": ("dam_break", "pressure", "Turbo"),
     "droplet": ("droplet", "pressure", "Turbo"),
     "block_drop": ("block_drop", "pressure", "Turbo"),
-    "one_particle": ("one_particle", "pressure", "Turbo"),
-    "two_particles": ("two_particles", "pressure", "Turbo"),
-    "three_particles": ("three_particles", "pressure", "Turbo"),
-    "four_particles": ("four_particles", "pressure", "Turbo"),
+    "one_particle": ("one_particle", "velocity", "Turbo"),
+    "two_particles": ("two_particles", "velocity", "Turbo"),
+    "three_particles": ("three_particles", "velocity", "Turbo"),
+    "four_particles": ("four_particles", "velocity", "Turbo"),
 }
 STATE_VIEW_SIZE = (800, 800)
 

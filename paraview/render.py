@@ -33,16 +33,35 @@ ONE_LINER = ("xvfb-run -a pvpython --disable-xdisplay-test "
              "paraview/render.py RUN_DIR [options]")
 REEXEC_ENV = "SPH_RENDER_REEXEC"
 
-# Screen layout, in normalised viewport coordinates (origin lower left).
-# check_png.py relies on the same numbers to tell particles from the legend
-# and the time annotation.
-PLOT_BOX = (0.03, 0.03, 0.76, 0.88)   # x0, y0, x1, y1: where the domain goes
-LEGEND_POSITION = (0.81, 0.08)        # lower-left corner of the colour legend
-LEGEND_LENGTH = 0.80
+
+
+class Layout:
+    """Screen layout of a W x H image, in normalised viewport coordinates
+    (origin lower left): the domain goes in plot_box, the colour legend in
+    a strip on the right wide enough for its labels, the time on top.
+    check_png.py uses it to tell particles from the legend and the text."""
+
+    def __init__(self, W, H):
+        small = min(W, H) < 400
+        self.title_font = 12 if small else 14
+        self.label_font = 10 if small else 12
+        strip = max(0.19, (30 + 6.5 * self.label_font) / float(W))
+        self.legend_x = 1.0 - strip              # legend strip starts here
+        self.legend_position = (self.legend_x + 0.02, 0.08)
+        self.legend_length = 0.80
+        self.annotation_y = 1.0 - (6 + 2.2 * self.title_font) / float(H)
+        self.plot_box = (0.03, 0.03, self.legend_x - 0.03,
+                         min(0.88, self.annotation_y - 0.02))
+
+
+def plot_box(size):
+    return Layout(*size).plot_box
 ANNOTATION_FORMAT = "t = {time:.4f} s"
 DEFAULT_FIELD = "pressure"
 DEFAULT_COLORMAP = "Turbo"
 RADIUS_FACTOR = 0.5                   # Gaussian radius = factor * spacing
+MIN_RADIUS_PX = 2.0                   # ... but at least this many pixels
+MIN_RADIUS_PX_POINTS = 4.0            # ... or this for explicit points
 VIEW_ANNOTATION = "sph."              # prefix of our keys in a view proxy
 
 
@@ -298,17 +317,36 @@ class RunInfo:
     def __init__(self, steps, bounds_override=None):
         first, self.first_bounds = field_data(steps[0][1])
         self.dimension = int(first.get("dimension", (0,))[0]) or None
-        self.spacing = first.get("particle_spacing", (None,))[0]
+        # Lattice runs: particle_spacing > 0; explicit points have 0 there,
+        # and then the smoothing length stands in (radius h/2).
+        self.spacing = first.get("particle_spacing", (0.0,))[0]
+        self.explicit_points = not self.spacing
+        if not self.spacing:
+            self.spacing = first.get("smoothing_length", (0.0,))[0]
         if self.dimension is None:
             b = self.first_bounds or (0, 0, 0, 0, 0, 0)
             self.dimension = 2 if b[5] - b[4] == 0 else 3
-        if not self.spacing:
-            h = first.get("smoothing_length", (None,))[0]
-            self.spacing = h / 1.3 if h else None
         self.bounds = self._domain(steps, first, bounds_override)
         if not self.spacing:   # last resort: a fraction of the domain
             self.spacing = max(self.bounds[1] - self.bounds[0],
                                self.bounds[3] - self.bounds[2]) / 100.0
+
+    def radius(self, size, factor=RADIUS_FACTOR):
+        """Gaussian radius: factor * spacing, but at least MIN_RADIUS_PX
+        pixels (more for a few explicit points) when the domain is framed
+        in a size[0] x size[1] image, so that particles stay visible."""
+        W, H = size
+        x0, y0, x1, y1 = plot_box(size)
+        b = self.bounds
+        ext = [max(b[2 * k + 1] - b[2 * k], 1e-12) for k in range(3)]
+        if self.dimension == 2:
+            px = min((x1 - x0) * W / ext[0], (y1 - y0) * H / ext[1])
+        else:
+            px = min((x1 - x0) * W, (y1 - y0) * H) / math.sqrt(
+                sum(e * e for e in ext))
+        min_px = MIN_RADIUS_PX_POINTS if self.explicit_points else \
+            MIN_RADIUS_PX
+        return max(factor * self.spacing, min_px / px)
 
     def _domain(self, steps, first, override):
         d = self.dimension
@@ -357,9 +395,9 @@ def padded(bounds, pad, dimension):
 
 
 def fit_camera(view, bounds, dimension, size, up="z"):
-    """Frame `bounds` inside PLOT_BOX of a size[0] x size[1] image."""
+    """Frame `bounds` inside the plot box of a size[0] x size[1] image."""
     W, H = float(size[0]), float(size[1])
-    x0, y0, x1, y1 = PLOT_BOX
+    x0, y0, x1, y1 = plot_box(size)
     bw = max(bounds[1] - bounds[0], 1e-12)
     bh = max(bounds[3] - bounds[2], 1e-12)
     cx, cy = (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2
@@ -427,7 +465,26 @@ def style_view(view, dimension, size):
         view.OrientationAxesLabelColor = [0.0, 0.0, 0.0]
 
 
-def color_by(display, view, field, component, ncomp, colormap):
+def place_legend(bar, size):
+    lay = Layout(*size)
+    bar.Position = list(lay.legend_position)
+    bar.ScalarBarLength = lay.legend_length
+    bar.TitleFontSize = lay.title_font
+    bar.LabelFontSize = lay.label_font
+
+
+def place_texts(view, size):
+    """Legends and time annotation of a (loaded) view, for this size."""
+    lay = Layout(*size)
+    for rep in view.Representations:
+        xml = rep.GetXMLName()
+        if xml == "ScalarBarWidgetRepresentation" and rep.Visibility:
+            place_legend(rep, size)
+        elif xml == "TextSourceRepresentation":
+            rep.FontSize = lay.title_font
+
+
+def color_by(display, view, field, component, ncomp, colormap, size):
     if ncomp > 1:
         pv.ColorBy(display, ("POINTS", field, component))
     else:
@@ -438,21 +495,21 @@ def color_by(display, view, field, component, ncomp, colormap):
             raise RenderError("unknown colour preset '%s'" % colormap)
     display.SetScalarBarVisibility(view, True)
     bar = pv.GetScalarBar(lut, view)
-    title = field if ncomp == 1 else "%s %s" % (
-        field, "magnitude" if component == "Magnitude" else component)
+    title = field if ncomp == 1 else (
+        "|%s|" % field if component == "Magnitude"
+        else "%s %s" % (field, component))
     bar.Title = title
     bar.ComponentTitle = ""
     bar.Orientation = "Vertical"
     bar.HorizontalTitle = 1
     bar.TitleJustification = "Left"
     bar.WindowLocation = "Any Location"
-    bar.Position = list(LEGEND_POSITION)
-    bar.ScalarBarLength = LEGEND_LENGTH
+    place_legend(bar, size)
     bar.TitleColor = [0.0, 0.0, 0.0]
     bar.LabelColor = [0.0, 0.0, 0.0]
-    bar.TitleFontSize = 14
-    bar.LabelFontSize = 12
-    bar.RangeLabelFormat = "%-#.3g"
+    bar.AutomaticLabelFormat = 0
+    bar.LabelFormat = "%-.3g"
+    bar.RangeLabelFormat = "%-.3g"
     bar.AddRangeLabels = 1
     return lut
 
@@ -466,14 +523,14 @@ def build_default(pvd, info, field, component, ncomp, colormap, size, up):
     style_view(view, info.dimension, size)
     display = pv.Show(reader, view)
     display.SetRepresentationType("Point Gaussian")
-    display.GaussianRadius = RADIUS_FACTOR * info.spacing
+    display.GaussianRadius = info.radius(size)
     display.ShaderPreset = "Plain circle" if info.dimension == 2 else "Sphere"
-    color_by(display, view, field, component, ncomp, colormap)
+    color_by(display, view, field, component, ncomp, colormap, size)
     label = pv.AnnotateTimeFilter(registrationName="time", Input=reader)
     label.Format = ANNOTATION_FORMAT
     ldisp = pv.Show(label, view)
     ldisp.WindowLocation = "Upper Left Corner"
-    ldisp.FontSize = 14
+    ldisp.FontSize = Layout(*size).title_font
     ldisp.Color = [0.0, 0.0, 0.0]
     domain_outline(view, info.bounds)
     # Remember what the camera frames, so that renders at another size (or
@@ -484,8 +541,8 @@ def build_default(pvd, info, field, component, ncomp, colormap, size, up):
     ann.SetAnnotation(VIEW_ANNOTATION + "dimension", str(info.dimension))
     ann.SetAnnotation(VIEW_ANNOTATION + "up", up)
     ann.SetAnnotation(VIEW_ANNOTATION + "radius_factor", str(RADIUS_FACTOR))
-    fit_camera(view, padded(info.bounds, RADIUS_FACTOR * info.spacing,
-                            info.dimension), info.dimension, size, up)
+    fit_camera(view, padded(info.bounds, info.radius(size), info.dimension),
+               info.dimension, size, up)
     return reader, display, view
 
 
@@ -551,9 +608,10 @@ def refit_from_state(view, display, info, size, up_arg):
     dim = info.dimension
     up = up_arg or get(VIEW_ANNOTATION + "up") or "z"
     factor = float(get(VIEW_ANNOTATION + "radius_factor") or RADIUS_FACTOR)
+    radius = info.radius(size, factor)
     if display.Representation == "Point Gaussian":
-        display.GaussianRadius = factor * info.spacing
-    fit_camera(view, padded(bounds, factor * info.spacing, dim), dim, size, up)
+        display.GaussianRadius = radius
+    fit_camera(view, padded(bounds, radius, dim), dim, size, up)
     for (name, _), src in pv.GetSources().items():
         if src.GetXMLName() == "Box" and name == "domain":
             set_box(src, bounds)
@@ -572,20 +630,37 @@ def current_field(display):
     return ca[1], comp
 
 
-def set_color_range(display, lut, a, reader, indices, steps):
+def data_range(reader, field, component, times):
+    """Exact (min, max) of a point array over the given times."""
+    lo, hi = math.inf, -math.inf
+    for t in times:
+        reader.UpdatePipeline(t)
+        arr = reader.PointData[field]
+        if arr is None:
+            continue
+        if arr.GetNumberOfComponents() == 1:
+            k = 0
+        else:
+            k = -1 if component == "Magnitude" else "XYZ".index(component)
+        r = arr.GetRange(k)
+        lo, hi = min(lo, r[0]), max(hi, r[1])
+    if lo > hi:
+        raise RenderError("no values of '%s' to colour by" % field)
+    return lo, hi
+
+
+def set_color_range(display, lut, a, reader, field, component, times):
     if a.range is not None:
         lo, hi = a.range
     else:
-        if len(indices) > 1:
-            display.RescaleTransferFunctionToDataRangeOverTime()
-        else:
-            display.RescaleTransferFunctionToDataRange(False, True)
-        lo, hi = lut.RGBPoints[0], lut.RGBPoints[-4]
-    if hi <= lo:                       # a constant field: centre it
-        d = max(abs(lo) * 1e-3, 1e-12)
-        lo, hi = lo - d, hi + d
+        lo, hi = data_range(reader, field, component, times)
+    if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):
+        # A constant field: put it in the middle of a readable range.
+        v = 0.5 * (lo + hi)
+        d = abs(v) if v else 1.0
+        lo, hi = v - d, v + d
     lut.RescaleTransferFunction(lo, hi)
-    pwf = pv.GetOpacityTransferFunction(display.ColorArrayName[1])
+    pwf = pv.GetOpacityTransferFunction(field)
     pwf.RescaleTransferFunction(lo, hi)
     lut.AutomaticRescaleRangeMode = "Never"
 
@@ -616,6 +691,7 @@ def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
         reader, display, view = load_state(a.state, pvd)
         view.ViewSize = list(size)
         refit_from_state(view, display, info, size, a.up)
+        place_texts(view, size)
         field, comp = current_field(display)
         if field_arg:
             field, comp = field_arg, a.component
@@ -624,7 +700,7 @@ def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
             check_field(field, arrays, steps[0][1])
         if field_arg or a.colormap or display.ColorArrayName[1] != field:
             lut = color_by(display, view, field, comp, arrays.get(field, 1),
-                           a.colormap)
+                           a.colormap, size)
         else:
             lut = pv.GetColorTransferFunction(field)
         if field not in reader.PointData.keys():
@@ -633,6 +709,7 @@ def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
                                   sorted(reader.PointData.keys()))))
     else:
         field = field_arg or DEFAULT_FIELD
+        comp = a.component
         reader, display, view = build_default(
             pvd, info, field, a.component, arrays[field],
             a.colormap or DEFAULT_COLORMAP, size, up)
@@ -648,8 +725,8 @@ def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
         view.ViewTime = t
         reader.UpdatePipeline(t)
 
-    go_to(indices[-1] if len(indices) == 1 else indices[0])
-    set_color_range(display, lut, a, reader, indices, steps)
+    set_color_range(display, lut, a, reader, field, comp,
+                    [steps[i][0] for i in indices])
     written = []
     for i, out in zip(indices, outputs):
         go_to(i)

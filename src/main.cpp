@@ -24,7 +24,7 @@ void declareKeys(CLI::App& run, sph::CaseConfig& c) {
   run.add_option("--output", c.output, "Output folder [default: runs/<name>]")->group("Run");
   run.add_option("--name", c.name, "Run name: <name>.pvd, <name>_NNNNN.vtp "
                  "[letters, digits, _ - .; default: case file name]")->group("Run");
-  run.add_option("--model", c.model, "Physics model [seed_wcsph]")->capture_default_str()->group("Run");
+  run.add_option("--model", c.model, "Physics model [seed_wcsph | wcsph]")->capture_default_str()->group("Run");
   run.add_option("--dimension", c.dimension, "Spatial dimension [2 or 3]")->capture_default_str()->group("Run");
   run.add_option("--threads", c.threads, "OpenMP threads [>= 0; 0: all cores]")->capture_default_str()->group("Run");
   run.add_flag("--progress,!--no-progress", c.progress, "Progress line on a terminal")->capture_default_str()->group("Run");
@@ -35,6 +35,33 @@ void declareKeys(CLI::App& run, sph::CaseConfig& c) {
   real("--mu", c.mu, "Dynamic viscosity mu [>= 0; 0 switches viscosity off]");
   real("--g", c.g, "Gravity g along -y (2D) or -z (3D) [m/s^2; 0 switches gravity off]");
   real("--restitution", c.restitution, "Wall restitution e: normal velocity -> -e times itself [0 to 1]");
+  run.add_flag("--walls,!--no-walls", c.walls, "Damped reflecting walls on the domain box")
+      ->capture_default_str()->group("Physics and numerics");
+  auto choice = [&](const char* flag, std::string& v, const char* help) {
+    run.add_option(flag, v, help)->group("wcsph model");
+  };
+  choice("--kernel", c.kernel, "Kernel [cubic_spline (default) | wendland_c2 | gaussian | muller]");
+  choice("--eos", c.eos, "Equation of state [linear (default) | linear_clamped | tait | polytropic]");
+  choice("--viscosity", c.viscosity, "Viscosity [laplacian (default, uses mu) | monaghan | none]");
+  auto wreal = [&](const char* flag, sph::Real& v, const char* help) {
+    run.add_option(flag, v, help)->capture_default_str()->group("wcsph model");
+  };
+  wreal("--gamma", c.gamma, "Tait exponent [> 0]");
+  wreal("--c0", c.c0, "Tait sound speed [m/s; > 0 with eos = tait]");
+  wreal("--polytropic_index", c.polytropicIndex, "n in p = k rho^(1 + 1/n) [> 0]");
+  wreal("--alpha", c.alpha, "Monaghan viscosity alpha [>= 0]");
+  wreal("--beta", c.beta, "Monaghan viscosity beta [>= 0]");
+  wreal("--xsph", c.xsph, "XSPH epsilon [0 to 1; 0: off]");
+  wreal("--damping", c.damping, "Linear damping nu in a = -nu v [1/s; >= 0; 0: off]");
+  wreal("--star_mass", c.starMass, "Toy star mass M [> 0; 0: no star]");
+  wreal("--star_radius", c.starRadius, "Toy star radius R [m; > 0]");
+  run.add_option("--star_particles", c.starParticles, "Particles per star [>= 1 each]")->group("wcsph model");
+  run.add_option("--star_center", c.starCenter, "Star centres [m; D values per star]")->group("wcsph model");
+  run.add_option("--star_velocity", c.starVelocity, "Star velocities [m/s; D values per star]")->group("wcsph model");
+  run.add_option("--seed", c.seed, "Random seed of the star particles")->capture_default_str()->group("wcsph model");
+  run.add_option("--integrator", c.integrator, "Time integrator [leap_frog (default) | symplectic_euler | rk4 | euler]")
+      ->group("Physics and numerics");
+  real("--cfl", c.cfl, "Adaptive dt with this CFL factor (dt is then the largest step) [0 to 2; 0: fixed dt]");
   real("--dt", c.dt, "Time step [s; > 0]");
   real("--end_time", c.endTime, "Simulated time [s; > 0]");
   run.add_option("--output_every", c.outputEvery, "Write a snapshot every N steps (and the last) [>= 1]")

@@ -1,6 +1,7 @@
 #include "sph/particle_sources.hpp"
 
 #include "sph/io/vtp_io.hpp"
+#include "sph/toy_star.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -10,26 +11,6 @@
 
 namespace sph {
 namespace {
-
-std::string fmt(Real x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
-void requirePositive(const char* key, Real value) {
-  if (!(value > 0) || !std::isfinite(value))
-    throw CaseError(std::string(key) + " = " + fmt(value) + " is out of range: it must be > 0");
-}
-
-void requireSize(const char* key, const std::vector<Real>& v, int dim, bool allowEmpty) {
-  if (allowEmpty && v.empty()) return;
-  if (static_cast<int>(v.size()) != dim)
-    throw CaseError(std::string(key) + " has " + std::to_string(v.size()) +
-                    " values: it needs " + std::to_string(dim) + " (one per dimension)");
-  for (Real x : v)
-    if (!std::isfinite(x)) throw CaseError(std::string(key) + " must hold finite numbers");
-}
 
 template <int D>
 void addParticle(Particles<D>& P, const Vec<D>& x, const Vec<D>& v, Real m = 0) {
@@ -159,8 +140,32 @@ void addVtp(InitialState<D>& s, const std::string& path) {
   s.startTime = f.time;
 }
 
+// Toy stars: star_particles[s] random points in the ball of radius R about
+// star_center[s], moving with star_velocity[s]; every particle has mass
+// star_mass / (total particles), so a single star has mass M.
 template <int D>
-void addGenerated(Particles<D>& P, const CaseConfig& c, const Vec<D>& v0) {
+void addStars(InitialState<D>& s, const CaseConfig& c) {
+  long total = 0;
+  for (long n : c.starParticles) total += n;
+  const Real m = c.starMass / static_cast<Real>(total);
+  for (std::size_t k = 0; k < c.starParticles.size(); ++k) {
+    Vec<D> centre, v = Vec<D>::Zero();
+    for (int d = 0; d < D; ++d) {
+      centre[d] = c.starCenter[k * D + static_cast<std::size_t>(d)];
+      if (!c.starVelocity.empty()) v[d] = c.starVelocity[k * D + static_cast<std::size_t>(d)];
+    }
+    const auto points = randomPointsInBall<D>(centre, c.starRadius,
+                                              static_cast<std::size_t>(c.starParticles[k]),
+                                              static_cast<unsigned>(c.seed + static_cast<long>(k)));
+    for (const auto& x : points) addParticle(s.particles, x, v, m);
+  }
+  s.massesGiven = true;
+}
+
+template <int D>
+void addGenerated(InitialState<D>& s, const CaseConfig& c, const Vec<D>& v0) {
+  Particles<D>& P = s.particles;
+  if (c.starMass != 0) addStars(s, c);
   if (!c.blockMin.empty()) addBlock(P, toVec<D>(c.blockMin), toVec<D>(c.blockMax), c.spacing, v0);
   if (!c.discCenter.empty()) addDisc(P, toVec<D>(c.discCenter), c.discRadius, c.spacing, v0);
   for (std::size_t k = 0; k + D <= c.points.size(); k += D) {
@@ -184,65 +189,12 @@ void addFile(InitialState<D>& s, const CaseConfig& c) {
 
 }  // namespace
 
-long stepsFor(const CaseConfig& c) {
-  return static_cast<long>(std::ceil(c.endTime / c.dt - 1e-9));
-}
-
-void validateCase(const CaseConfig& c) {
-  if (c.model != "seed_wcsph")
-    throw CaseError("model = \"" + c.model + "\" is not known: allowed is \"seed_wcsph\"");
-  if (c.dimension != 2 && c.dimension != 3)
-    throw CaseError("dimension = " + std::to_string(c.dimension) + " is out of range: it must be 2 or 3");
-  if (c.name.empty() || c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
-    throw CaseError("name = \"" + c.name + "\" is not allowed: use letters, digits, '_', '-' and '.'");
-  requirePositive("h", c.h);
-  requirePositive("k", c.k);
-  requirePositive("rho0", c.rho0);
-  if (!(c.mu >= 0) || !std::isfinite(c.mu))
-    throw CaseError("mu = " + fmt(c.mu) + " is out of range: it must be >= 0");
-  if (!std::isfinite(c.g)) throw CaseError("g must be a finite number");
-  if (!(c.restitution >= 0 && c.restitution <= 1))
-    throw CaseError("restitution = " + fmt(c.restitution) + " is out of range: it must be in [0, 1]");
-  requirePositive("dt", c.dt);
-  requirePositive("end_time", c.endTime);
-  if (c.outputEvery < 1)
-    throw CaseError("output_every = " + std::to_string(c.outputEvery) + " is out of range: it must be >= 1");
-  if (c.threads < 0)
-    throw CaseError("threads = " + std::to_string(c.threads) + " is out of range: it must be >= 0 (0: all cores)");
-  const int D = c.dimension;
-  requireSize("domain_min", c.domainMin, D, false);
-  requireSize("domain_max", c.domainMax, D, false);
-  for (int d = 0; d < D; ++d)
-    if (!(c.domainMax[static_cast<std::size_t>(d)] > c.domainMin[static_cast<std::size_t>(d)] + 2 * c.h))
-      throw CaseError("domain_max must exceed domain_min by more than 2 h in every dimension "
-                      "(walls keep particles h away from each wall)");
-  requireSize("block_min", c.blockMin, D, true);
-  requireSize("block_max", c.blockMax, D, true);
-  requireSize("disc_center", c.discCenter, D, true);
-  requireSize("velocity", c.velocity, D, true);
-  if (c.blockMin.empty() != c.blockMax.empty())
-    throw CaseError("block_min and block_max go together: give both or neither");
-  if (!c.blockMin.empty())
-    for (int d = 0; d < D; ++d)
-      if (!(c.blockMax[static_cast<std::size_t>(d)] > c.blockMin[static_cast<std::size_t>(d)]))
-        throw CaseError("block_max must exceed block_min in every dimension");
-  if (c.discCenter.empty() != (c.discRadius == 0))
-    throw CaseError("disc_center and disc_radius go together: give both or neither");
-  if (!c.discCenter.empty()) requirePositive("disc_radius", c.discRadius);
-  if ((!c.blockMin.empty() || !c.discCenter.empty())) requirePositive("spacing", c.spacing);
-  if (c.points.size() % static_cast<std::size_t>(D) != 0)
-    throw CaseError("points has " + std::to_string(c.points.size()) +
-                    " values: it needs a multiple of " + std::to_string(D) + " (x y" +
-                    (D == 3 ? " z" : "") + " per point)");
-  if (c.spacing < 0) throw CaseError("spacing = " + fmt(c.spacing) + " is out of range: it must be > 0");
-}
-
 template <int D>
 InitialState<D> buildInitialState(const CaseConfig& c) {
   InitialState<D> s;
   Particles<D>& P = s.particles;
   const Vec<D> v0 = c.velocity.empty() ? Vec<D>::Zero() : toVec<D>(c.velocity);
-  if (c.particleFile.empty()) addGenerated(P, c, v0);
+  if (c.particleFile.empty()) addGenerated(s, c, v0);
   else addFile(s, c);
   if (P.x.empty())
     throw CaseError("the case has zero particles: give block_min/block_max, disc_center/disc_radius, "

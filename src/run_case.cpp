@@ -4,7 +4,9 @@
 #include "sph/io/pvd_series.hpp"
 #include "sph/io/vtp_io.hpp"
 #include "sph/particle_sources.hpp"
+#include "sph/model_registry.hpp"
 #include "sph/scene.hpp"
+#include "sph/toy_star.hpp"
 
 #include <omp.h>
 #include <unistd.h>
@@ -12,6 +14,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -56,7 +60,10 @@ class RunOutput {
     writeFileAtomically((dir_ / "energy.csv").string(), energy_);
     ++count_;
     lastStep_ = scene.stepIndex();
+    lastTime_ = scene.time();
   }
+
+  Real lastTime() const { return lastTime_; }
 
   long count() const { return count_; }
   long lastStep() const { return lastStep_; }
@@ -70,7 +77,78 @@ class RunOutput {
   std::string energy_;
   long count_ = 0;
   long lastStep_ = -1;
+  Real lastTime_ = 0;
 };
+
+// timestep.csv of an adaptive run: step, time, dt and the criterion that set
+// it, for every step; lines are buffered and appended at each snapshot.
+class TimeStepLog {
+ public:
+  TimeStepLog(std::string path, bool enabled) : path_(std::move(path)), enabled_(enabled) {
+    if (enabled_) buffer_ = "step,time,dt,criterion\n";
+  }
+
+  template <class Scene>
+  void add(const Scene& scene) {
+    if (!enabled_) return;
+    char line[128];
+    std::snprintf(line, sizeof line, "%ld,%.10g,%.6g,%s\n", scene.stepIndex(), scene.time(),
+                  scene.lastTimeStep().dt, scene.lastTimeStep().criterion);
+    buffer_ += line;
+  }
+
+  void flush() {
+    if (!enabled_ || buffer_.empty()) return;
+    std::ofstream f(path_, std::ios::app);
+    f << buffer_;
+    if (!f) throw std::runtime_error("cannot write " + path_);
+    buffer_.clear();
+  }
+
+ private:
+  std::string path_;
+  bool enabled_;
+  std::string buffer_;
+};
+
+// After a toy-star run: the radial density profile of each star next to the
+// analytic equilibrium, as star_profile.csv (star 0) / star<k>_profile.csv,
+// and the relative L2 error inside 0.9 R printed.
+template <int D>
+void writeStarProfiles(const Scene<D>& scene, const CaseConfig& c, const std::filesystem::path& dir,
+                       std::ostream& out) {
+  const Real lambda = starLambda(c);
+  for (std::size_t k = 0; k < c.starParticles.size(); ++k) {
+    // The star's centre of mass, from the particles that started in it (ids
+    // are assigned star by star).
+    long first = 0;
+    for (std::size_t s = 0; s < k; ++s) first += c.starParticles[s];
+    const long last = first + c.starParticles[k];
+    const auto& P = scene.particles();
+    Vec<D> centre = Vec<D>::Zero();
+    Real mass = 0;
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (P.id[i] >= first && P.id[i] < last) {
+        centre += P.m[i] * P.x[i];
+        mass += P.m[i];
+      }
+    centre /= mass;
+    const StarProfile prof = toyStarProfile(P, centre, lambda, c.starRadius, c.k, c.polytropicIndex);
+    std::string csv = "r,rho_sph,rho_analytic,particles\n";
+    char line[160];
+    for (std::size_t b = 0; b < prof.r.size(); ++b) {
+      std::snprintf(line, sizeof line, "%.6g,%.8g,%.8g,%zu\n", prof.r[b], prof.rhoSph[b], prof.rhoExact[b],
+                    prof.count[b]);
+      csv += line;
+    }
+    const std::string name = c.starParticles.size() == 1 ? "star_profile.csv" : "star" + std::to_string(k) + "_profile.csv";
+    writeFileAtomically((dir / name).string(), csv);
+    std::snprintf(line, sizeof line,
+                  "  star %zu           relative L2 density error inside 0.9 R: %.4f (%zu particles; lambda = %.6g)\n",
+                  k, prof.l2Error, prof.inside, lambda);
+    out << line;
+  }
+}
 
 std::string failureMessage(const StateFailure& f, long step, Real time) {
   std::ostringstream s;
@@ -82,10 +160,12 @@ std::string failureMessage(const StateFailure& f, long step, Real time) {
 }  // namespace
 
 template <int D>
-int runCase(const CaseConfig& c, std::ostream& out, std::ostream& err) {
+int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   InitialState<D> init;
+  CaseConfig c;
   try {
-    validateCase(c);
+    validateCase(given);
+    c = withDefaults(given);
     init = buildInitialState<D>(c);
   } catch (const CaseError& e) {
     err << "sph: error: " << e.what() << "\n";
@@ -96,13 +176,15 @@ int runCase(const CaseConfig& c, std::ostream& out, std::ostream& err) {
   const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
 
   std::size_t nearWall = 0;
-  for (const auto& x : init.particles.x)
-    nearWall += ((x.array() - lo.array()).minCoeff() < c.h || (hi.array() - x.array()).minCoeff() < c.h);
+  if (c.walls)
+    for (const auto& x : init.particles.x)
+      nearWall += ((x.array() - lo.array()).minCoeff() < c.h || (hi.array() - x.array()).minCoeff() < c.h);
 
-  SeedWcsphParameters prm{c.h, c.k, c.rho0, c.mu, c.g};
-  Scene<D> scene(std::move(init.particles), SeedWcsph<D>(prm),
-                 DampedReflectingWalls<D>{lo, hi, c.h, c.restitution}, StateCheck<D>{lo, hi},
-                 c.dt, init.startTime);
+  std::optional<DampedReflectingWalls<D>> walls;
+  if (c.walls) walls = DampedReflectingWalls<D>{lo, hi, c.h, c.restitution};
+  const Real endTime = init.startTime + c.endTime;
+  Scene<D> scene(std::move(init.particles), makeModel<D>(c), walls, StateCheck<D>{lo, hi},
+                 TimeStepControl{c.dt, c.cfl, endTime}, init.startTime, makeIntegrator<D>(c.integrator));
   if (auto failure = scene.initialise(!init.massesGiven)) {
     err << "sph: error: the initial state is not valid: particle id " << failure->id << ": "
         << failure->detail << "\n";
@@ -126,7 +208,8 @@ int runCase(const CaseConfig& c, std::ostream& out, std::ostream& err) {
         << " to a wall; the walls move them to distance h on the first step\n";
 
   RunOutput<D> output(dir, c.name, SnapshotInfo{0, 0, c.h, c.spacing});
-  const long steps = stepsFor(c);
+  TimeStepLog dtLog((dir / "timestep.csv").string(), c.cfl > 0);
+  const long steps = c.cfl > 0 ? 0 : stepsFor(c);  // adaptive: until end_time
   const bool showProgress = c.progress && isatty(STDERR_FILENO);
   const auto wall0 = Clock::now();
   double stepSeconds = 0;
@@ -134,28 +217,34 @@ int runCase(const CaseConfig& c, std::ostream& out, std::ostream& err) {
   int status = kSuccess;
   try {
     output.write(scene);
-    for (long s = 1; s <= steps; ++s) {
+    auto finished = [&](long s) {
+      return steps > 0 ? s >= steps : scene.time() >= endTime * (1 - 1e-12);
+    };
+    for (long s = 1; !finished(s - 1); ++s) {
       const auto t0 = Clock::now();
       const auto failure = scene.step();
       stepSeconds += secondsSince(t0);
+      dtLog.add(scene);
       if (failure) {
         if (showProgress) err << "\n";
         err << "sph: error: " << failureMessage(*failure, scene.stepIndex(), scene.time())
             << "\nsph: the outputs up to step " << output.lastStep() << " (t = "
-            << static_cast<Real>(output.lastStep()) * c.dt + init.startTime
-            << " s) are intact in " << output.seriesPath() << "\n";
+            << output.lastTime() << " s) are intact in " << output.seriesPath() << "\n";
         status = kBlewUp;
         break;
       }
-      if (s % c.outputEvery == 0 || s == steps) output.write(scene);
+      if (s % c.outputEvery == 0 || finished(s)) {
+        output.write(scene);
+        dtLog.flush();
+      }
       if (showProgress && secondsSince(lastProgress) > 0.25) {
         lastProgress = Clock::now();
         const double elapsed = secondsSince(wall0);
         char line[160];
         std::snprintf(line, sizeof line, "\r  t = %.4g / %.4g s   step %ld / %ld   ETA %s   ",
-                      scene.time(), init.startTime + static_cast<Real>(steps) * c.dt, s, steps,
-                      formatDuration(elapsed / static_cast<double>(s) *
-                                     static_cast<double>(steps - s)).c_str());
+                      scene.time(), endTime, s, steps,
+                      formatDuration(elapsed / (scene.time() - init.startTime) *
+                                     (endTime - scene.time())).c_str());
         err << line << std::flush;
       }
     }
@@ -165,6 +254,14 @@ int runCase(const CaseConfig& c, std::ostream& out, std::ostream& err) {
     return kWriteFailed;
   }
   if (showProgress) err << "\r" << std::string(70, ' ') << "\r" << std::flush;
+  if (status == kSuccess && c.starMass > 0) {
+    try {
+      writeStarProfiles(scene, c, dir, out);
+    } catch (const std::runtime_error& e) {
+      err << "sph: error: " << e.what() << "\n";
+      return kWriteFailed;
+    }
+  }
 
   const double wall = secondsSince(wall0);
   const long done = scene.stepIndex();

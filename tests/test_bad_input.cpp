@@ -39,15 +39,15 @@ std::string writeFile(const std::string& name, const std::string& text) {
 BOOST_AUTO_TEST_SUITE(bad_input)
 
 BOOST_AUTO_TEST_CASE(unknown_key_in_case_file) {
-  const std::string file = writeFile("typo.case", "points = [0.5, 0.5]\nviscosity = 3\n");
+  const std::string file = writeFile("typo.case", "points = [0.5, 0.5]\nviscosty = 3\n");
   const auto out = test::scratchDir("bad_typo") / "out";
   const auto r = test::runSph({"run", file, "--output", out.string()});
   BOOST_TEST(r.exitCode == 2);
-  BOOST_TEST(r.output.find("unknown key 'viscosity'") != std::string::npos, r.output);
+  BOOST_TEST(r.output.find("unknown key 'viscosty'") != std::string::npos, r.output);
   BOOST_TEST(!std::filesystem::exists(out));
 }
 
-BOOST_AUTO_TEST_CASE(unknown_flag) { expectRejected({"--viscosity", "3"}, "--viscosity"); }
+BOOST_AUTO_TEST_CASE(unknown_flag) { expectRejected({"--viscosty", "3"}, "--viscosty"); }
 BOOST_AUTO_TEST_CASE(wrong_type) { expectRejected({"--h", "abc"}, "--h = abc"); }
 BOOST_AUTO_TEST_CASE(h_not_positive) { expectRejected({"--h", "0"}, "h = 0 is out of range: it must be > 0"); }
 BOOST_AUTO_TEST_CASE(dt_not_positive) { expectRejected({"--dt", "-1e-4"}, "dt = -0.0001 is out of range: it must be > 0"); }

@@ -26,16 +26,38 @@ struct CaseConfig {
   std::string model = "seed_wcsph";
   int dimension = 2;
 
-  // seed_wcsph physics
+  // physics shared by the models
   Real h = 0.01;
   Real k = 2000;
   Real rho0 = 1000;
   Real mu = 1;
   Real g = 9.81;
   Real restitution = 0.5;
+  bool walls = true;
+
+  // wcsph: choices by name ("" = the model's default)
+  std::string kernel;       // cubic_spline | wendland_c2 | gaussian | muller
+  std::string eos;          // linear | linear_clamped | tait | polytropic
+  std::string viscosity;    // none | laplacian | monaghan
+  Real gamma = 7;           // Tait exponent
+  Real c0 = 0;              // Tait sound speed (0: 10 sqrt(2 g H) is the user's job)
+  Real polytropicIndex = 1; // n in p = k rho^(1 + 1/n)
+  Real alpha = 1, beta = 2; // Monaghan artificial viscosity
+  Real xsph = 0;            // XSPH epsilon (0: off)
+  Real damping = 0;         // nu in a = -nu v (0: off)
+
+  // toy star(s)
+  Real starMass = 0;                // M (0: no star)
+  Real starRadius = 0;              // R
+  std::vector<long> starParticles;  // particles per star
+  std::vector<Real> starCenter;     // D values per star
+  std::vector<Real> starVelocity;   // D values per star
+  long seed = 1;
 
   // time
+  std::string integrator;   // leap_frog | symplectic_euler | rk4 | euler
   Real dt = 1e-4;
+  Real cfl = 0;             // 0: fixed dt; > 0: adaptive dt with this CFL factor
   Real endTime = 1.0;
   long outputEvery = 100;
 
@@ -66,7 +88,11 @@ Vec<D> toVec(const std::vector<Real>& v) {
   return out;
 }
 
-// Number of steps that reach end_time: ceil(end_time / dt) up to round-off.
+// Number of steps that reach end_time with a fixed dt: ceil(end_time / dt)
+// up to round-off.
 long stepsFor(const CaseConfig& c);
+
+// The model-dependent defaults filled in ("" choices), after validation.
+CaseConfig withDefaults(CaseConfig c);
 
 }  // namespace sph

@@ -38,7 +38,7 @@ struct DampedReflectingWalls {
  private:
   // outward: -1 for a lower wall, +1 for an upper wall.
   void reflect(Particles<D>& P, std::size_t i, int d, int outward) const {
-    if (P.vHalf[i][d] * outward > 0) P.vHalf[i][d] *= -restitution;
+    if (!P.vHalf.empty() && P.vHalf[i][d] * outward > 0) P.vHalf[i][d] *= -restitution;
     if (P.v[i][d] * outward > 0) P.v[i][d] *= -restitution;
   }
 };

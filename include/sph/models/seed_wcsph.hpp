@@ -15,14 +15,17 @@
 
 #include "sph/neighbour_list.hpp"
 #include "sph/kernels/seed_kernels.hpp"
-#include "sph/terms/linear_eos.hpp"
+#include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/pair_accelerations.hpp"
 #include "sph/terms/seed_pressure.hpp"
 #include "sph/terms/seed_viscosity.hpp"
 #include "sph/terms/summation_density.hpp"
 #include "sph/terms/uniform_gravity.hpp"
 
+#include <cmath>
 #include <optional>
+#include <string>
+#include <vector>
 #include <tuple>
 
 namespace sph {
@@ -45,6 +48,17 @@ class SeedWcsph {
   }
 
   Real support() const { return kernels_.support(); }
+  Real smoothingLength() const { return kernels_.support(); }
+  FieldNeeds needs() const { return {}; }
+  std::vector<std::string> termNames() const {
+    std::vector<std::string> names{"seed_density", "linear_eos", "seed_pressure"};
+    if (viscosity_) names.push_back("seed_viscosity");
+    if (gravity_) names.push_back("gravity");
+    return names;
+  }
+  // dp/drho = k for the linear EOS.
+  Real maxSoundSpeed(const Particles<D>&) const { return std::sqrt(eos_.k); }
+  Real kinematicViscosity() const { return viscosity_ ? viscosity_->mu / eos_.rho0 : 0; }
   Real restDensity() const { return eos_.rho0; }
   bool hasViscosity() const { return viscosity_.has_value(); }
   bool hasGravity() const { return gravity_.has_value(); }

@@ -16,8 +16,10 @@ namespace sph {
 struct SeedPressure {
   SeedKernels kernels;
 
+  static constexpr bool isForceDensity = true;
+
   template <int D>
-  Vec<D> force(const PairContext<D>& c, const Particles<D>& P) const {
+  Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
     const Real pBar = (P.p[c.i] + P.p[c.j]) / 2;
     return (-P.m[c.j] / P.rho[c.j] * pBar * kernels.pressureFactor(c.q)) * c.rij;
   }

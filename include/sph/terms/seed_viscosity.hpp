@@ -15,8 +15,10 @@ struct SeedViscosity {
   SeedKernels kernels;
   Real mu;
 
+  static constexpr bool isForceDensity = true;
+
   template <int D>
-  Vec<D> force(const PairContext<D>& c, const Particles<D>& P) const {
+  Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
     return (-mu * P.m[c.j] / P.rho[c.j] * kernels.viscosityLaplacian(c.q)) *
            (P.v[c.i] - P.v[c.j]);
   }

@@ -1,0 +1,36 @@
+// Monaghan artificial viscosity (Monaghan 1992, Annu. Rev. Astron.
+// Astrophys. 30, eq. 4.1-4.2):
+//
+//   a_i = - sum_j m_j Pi_ij grad_i W(r_ij, h),
+//   Pi_ij = (-alpha cbar_ij mu_ij + beta mu_ij^2) / rhobar_ij   if v_ij . r_ij < 0
+//         = 0                                                   otherwise,
+//   mu_ij = h v_ij . r_ij / (r_ij^2 + eps h^2),   eps = 0.01,
+//
+// with v_ij = v_i - v_j, r_ij = x_i - x_j, bar = mean of i and j. Active only
+// for approaching pairs; needs the sound speed c of every particle.
+#pragma once
+
+#include "sph/terms/pair_accelerations.hpp"
+
+namespace sph {
+
+template <class Kernel>
+struct MonaghanViscosity {
+  Kernel kernel;
+  Real alpha, beta;
+  static constexpr Real eps = 0.01;
+  static constexpr bool isForceDensity = false;
+
+  template <int D>
+  Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
+    const Real vr = (P.v[c.i] - P.v[c.j]).dot(c.rij);
+    if (vr >= 0) return Vec<D>::Zero();
+    const Real h = kernel.h();
+    const Real mu = h * vr / (c.r * c.r + eps * h * h);
+    const Real cBar = (P.c[c.i] + P.c[c.j]) / 2, rhoBar = (P.rho[c.i] + P.rho[c.j]) / 2;
+    const Real Pi = (-alpha * cBar * mu + beta * mu * mu) / rhoBar;
+    return (-P.m[c.j] * Pi) * kernel.gradW(c.rij, c.r);
+  }
+};
+
+}  // namespace sph

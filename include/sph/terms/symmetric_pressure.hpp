@@ -1,0 +1,26 @@
+// Symmetric pressure acceleration (Monaghan 1992, "Smoothed particle
+// hydrodynamics", Annu. Rev. Astron. Astrophys. 30, eq. 3.3):
+//
+//   a_i = - sum_j m_j (p_i / rho_i^2 + p_j / rho_j^2) grad_i W(r_ij, h)
+//
+// Antisymmetric in i, j, so total momentum is conserved exactly.
+#pragma once
+
+#include "sph/terms/pair_accelerations.hpp"
+
+namespace sph {
+
+template <class Kernel>
+struct SymmetricPressure {
+  Kernel kernel;
+  static constexpr bool isForceDensity = false;
+
+  template <int D>
+  Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
+    const Real pi = P.p[c.i] / (P.rho[c.i] * P.rho[c.i]);
+    const Real pj = P.p[c.j] / (P.rho[c.j] * P.rho[c.j]);
+    return (-P.m[c.j] * (pi + pj)) * kernel.gradW(c.rij, c.r);
+  }
+};
+
+}  // namespace sph

@@ -1,0 +1,60 @@
+// Time-step control: a fixed dt, or an adaptive dt from the usual explicit
+// limits (Monaghan 1992; Morris, Fox & Zhu 1997, J. Comput. Phys. 136):
+//
+//   dt_cfl     = C h / (c_max + |v|_max)        (acoustic CFL)
+//   dt_viscous = 0.125 h^2 / nu                  (nu = mu / rho0)
+//   dt_force   = 0.25 sqrt(h / |a|_max)
+//   dt = min(dt_cfl, dt_viscous, dt_force, dt_max), cut to land on end_time,
+//
+// with the safety factor C = `cfl` of the case. Each step records which
+// criterion set its dt.
+#pragma once
+
+#include "sph/particles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sph {
+
+struct TimeStepChoice {
+  Real dt;
+  const char* criterion;  // "fixed", "cfl", "viscous", "force", "max", "end"
+};
+
+struct TimeStepControl {
+  Real dt = 1e-4;   // fixed dt, or the largest adaptive dt
+  Real cfl = 0;     // 0: fixed dt; > 0: adaptive with this CFL factor
+  Real endTime = std::numeric_limits<Real>::infinity();
+
+  bool adaptive() const { return cfl > 0; }
+
+  template <int D, class Model>
+  TimeStepChoice next(const Particles<D>& P, const Model& model, Real time) const {
+    TimeStepChoice choice{dt, adaptive() ? "max" : "fixed"};
+    if (adaptive()) {
+      const Real h = model.smoothingLength();
+      Real v2 = 0, a2 = 0;
+      for (std::size_t i = 0; i < P.size(); ++i) {
+        v2 = std::max(v2, P.v[i].squaredNorm());
+        a2 = std::max(a2, P.a[i].squaredNorm());
+      }
+      consider(choice, cfl * h / (model.maxSoundSpeed(P) + std::sqrt(v2)), "cfl");
+      const Real nu = model.kinematicViscosity();
+      if (nu > 0) consider(choice, 0.125 * h * h / nu, "viscous");
+      if (a2 > 0) consider(choice, 0.25 * std::sqrt(h / std::sqrt(a2)), "force");
+    }
+    // Land exactly on end_time rather than overshoot it (adaptive only: a
+    // fixed dt keeps its value and the step count ceil(end_time / dt)).
+    if (adaptive() && time + choice.dt > endTime) choice = {endTime - time, "end"};
+    return choice;
+  }
+
+ private:
+  static void consider(TimeStepChoice& c, Real candidate, const char* name) {
+    if (candidate < c.dt) c = {candidate, name};
+  }
+};
+
+}  // namespace sph
