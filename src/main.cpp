@@ -120,7 +120,7 @@ int runCommand(int argc, char** argv) {
     return sph::kBadInput;
   }
   c.caseFile = run.get_config_ptr()->as<std::string>();
-  if (c.name.empty()) c.name = std::filesystem::path(c.caseFile).stem().string();
+  if (run.count("--name") == 0) c.name = std::filesystem::path(c.caseFile).stem().string();
   if (c.output.empty()) c.output = (std::filesystem::path("runs") / c.name).string();
   if (c.dimension == 3) return sph::runCase<3>(c, std::cout, std::cerr);
   if (c.dimension == 2) return sph::runCase<2>(c, std::cout, std::cerr);

@@ -99,7 +99,8 @@ class TimeStepLog {
 
   void flush() {
     if (!enabled_ || buffer_.empty()) return;
-    std::ofstream f(path_, std::ios::app);
+    std::ofstream f(path_, started_ ? std::ios::app : std::ios::trunc);
+    started_ = true;
     f << buffer_;
     if (!f) throw std::runtime_error("cannot write " + path_);
     buffer_.clear();
@@ -108,46 +109,40 @@ class TimeStepLog {
  private:
   std::string path_;
   bool enabled_;
+  bool started_ = false;
   std::string buffer_;
 };
 
-// After a toy-star run: the radial density profile of each star next to the
-// analytic equilibrium, as star_profile.csv (star 0) / star<k>_profile.csv,
-// and the relative L2 error inside 0.9 R printed.
+// After a toy-star run: the radial density profile next to the analytic
+// equilibrium of mass star_mass, as star_profile.csv, and the relative L2
+// error inside 0.9 R printed. With several stars (a collision) the profile
+// is that of all particles about their centre of mass: the merged star.
 template <int D>
 void writeStarProfiles(const Scene<D>& scene, const CaseConfig& c, const std::filesystem::path& dir,
                        std::ostream& out) {
   const Real lambda = starLambda(c);
-  for (std::size_t k = 0; k < c.starParticles.size(); ++k) {
-    // The star's centre of mass, from the particles that started in it (ids
-    // are assigned star by star).
-    long first = 0;
-    for (std::size_t s = 0; s < k; ++s) first += c.starParticles[s];
-    const long last = first + c.starParticles[k];
-    const auto& P = scene.particles();
-    Vec<D> centre = Vec<D>::Zero();
-    Real mass = 0;
-    for (std::size_t i = 0; i < P.size(); ++i)
-      if (P.id[i] >= first && P.id[i] < last) {
-        centre += P.m[i] * P.x[i];
-        mass += P.m[i];
-      }
-    centre /= mass;
-    const StarProfile prof = toyStarProfile(P, centre, lambda, c.starRadius, c.k, c.polytropicIndex);
-    std::string csv = "r,rho_sph,rho_analytic,particles\n";
-    char line[160];
-    for (std::size_t b = 0; b < prof.r.size(); ++b) {
-      std::snprintf(line, sizeof line, "%.6g,%.8g,%.8g,%zu\n", prof.r[b], prof.rhoSph[b], prof.rhoExact[b],
-                    prof.count[b]);
-      csv += line;
-    }
-    const std::string name = c.starParticles.size() == 1 ? "star_profile.csv" : "star" + std::to_string(k) + "_profile.csv";
-    writeFileAtomically((dir / name).string(), csv);
-    std::snprintf(line, sizeof line,
-                  "  star %zu           relative L2 density error inside 0.9 R: %.4f (%zu particles; lambda = %.6g)\n",
-                  k, prof.l2Error, prof.inside, lambda);
-    out << line;
+  const auto& P = scene.particles();
+  Vec<D> centre = Vec<D>::Zero();
+  Real mass = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    centre += P.m[i] * P.x[i];
+    mass += P.m[i];
   }
+  centre /= mass;
+  const StarProfile prof = toyStarProfile(P, centre, lambda, c.starRadius, c.k, c.polytropicIndex);
+  std::string csv = "r,rho_sph,rho_analytic,particles\n";
+  char line[160];
+  for (std::size_t b = 0; b < prof.r.size(); ++b) {
+    std::snprintf(line, sizeof line, "%.6g,%.8g,%.8g,%zu\n", prof.r[b], prof.rhoSph[b], prof.rhoExact[b],
+                  prof.count[b]);
+    csv += line;
+  }
+  writeFileAtomically((dir / "star_profile.csv").string(), csv);
+  std::snprintf(line, sizeof line,
+                "  toy star         relative L2 density error inside 0.9 R: %.4f (%zu particles "
+                "inside; lambda = %.6g)\n",
+                prof.l2Error, prof.inside, lambda);
+  out << line;
 }
 
 std::string failureMessage(const StateFailure& f, long step, Real time) {
@@ -180,12 +175,10 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     for (const auto& x : init.particles.x)
       nearWall += ((x.array() - lo.array()).minCoeff() < c.h || (hi.array() - x.array()).minCoeff() < c.h);
 
-  std::optional<DampedReflectingWalls<D>> walls;
-  if (c.walls) walls = DampedReflectingWalls<D>{lo, hi, c.h, c.restitution};
-  const Real endTime = init.startTime + c.endTime;
-  Scene<D> scene(std::move(init.particles), makeModel<D>(c), walls, StateCheck<D>{lo, hi},
-                 TimeStepControl{c.dt, c.cfl, endTime}, init.startTime, makeIntegrator<D>(c.integrator));
-  if (auto failure = scene.initialise(!init.massesGiven)) {
+  const Real startTime = init.startTime, endTime = startTime + c.endTime;
+  const bool massesGiven = init.massesGiven;
+  Scene<D> scene = makeScene<D>(c, std::move(init));
+  if (auto failure = scene.initialise(!massesGiven)) {
     err << "sph: error: the initial state is not valid: particle id " << failure->id << ": "
         << failure->detail << "\n";
     return kBadInput;
@@ -243,7 +236,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         char line[160];
         std::snprintf(line, sizeof line, "\r  t = %.4g / %.4g s   step %ld / %ld   ETA %s   ",
                       scene.time(), endTime, s, steps,
-                      formatDuration(elapsed / (scene.time() - init.startTime) *
+                      formatDuration(elapsed / (scene.time() - startTime) *
                                      (endTime - scene.time())).c_str());
         err << line << std::flush;
       }
@@ -276,7 +269,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
                 "  threads          %d\n"
                 "  neighbours       %.1f per particle (mean at the end)\n"
                 "  output           %s  (%ld snapshots)\n",
-                c.name.c_str(), c.model.c_str(), D, n, done, c.dt, scene.time() - init.startTime,
+                c.name.c_str(), c.model.c_str(), D, n, done, c.dt, scene.time() - startTime,
                 wall, stepSeconds,
                 stepSeconds > 0 ? static_cast<double>(n) * static_cast<double>(done) / stepSeconds : 0.0,
                 omp_get_max_threads(), scene.meanNeighbours(), output.seriesPath().c_str(),

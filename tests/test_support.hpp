@@ -87,3 +87,35 @@ inline std::string referenceFile(const std::string& name) {
 }
 
 }  // namespace sph::test
+
+#include "sph/model_registry.hpp"
+
+namespace sph::test {
+
+// A wcsph case with nothing switched on: no viscosity, no gravity, no walls,
+// in a large domain. Tests switch on what they need.
+inline CaseConfig bareWcsph(int dimension) {
+  CaseConfig c;
+  c.model = "wcsph";
+  c.dimension = dimension;
+  c.viscosity = "none";
+  c.g = 0;
+  c.walls = false;
+  c.domainMin.assign(static_cast<std::size_t>(dimension), -100);
+  c.domainMax.assign(static_cast<std::size_t>(dimension), 100);
+  return c;
+}
+
+// The scene of a case, built and initialised as `sph run` does.
+template <int D>
+Scene<D> sceneOf(const CaseConfig& given) {
+  validateCase(given);
+  const CaseConfig c = withDefaults(given);
+  InitialState<D> init = buildInitialState<D>(c);
+  const bool scale = !init.massesGiven;
+  Scene<D> s = makeScene<D>(c, std::move(init));
+  BOOST_REQUIRE(!s.initialise(scale));
+  return s;
+}
+
+}  // namespace sph::test

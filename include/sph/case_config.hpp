@@ -21,7 +21,7 @@ class CaseError : public std::runtime_error {
 
 struct CaseConfig {
   std::string caseFile;  // path of the case file ("" when none)
-  std::string name;      // run name: output files are <name>.pvd, <name>_NNNNN.vtp
+  std::string name = "sph";  // run name: output files are <name>.pvd, <name>_NNNNN.vtp
   std::string output;    // output folder
   std::string model = "seed_wcsph";
   int dimension = 2;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "sph/case_config.hpp"
+#include "sph/particle_sources.hpp"
 #include "sph/scene.hpp"
 #include "sph/toy_star.hpp"
 
@@ -58,6 +59,17 @@ Integrator<D> makeIntegrator(const std::string& name) {
   if (name == "rk4") return RungeKutta4<D>{};
   if (name == "euler") return ExplicitEuler<D>{};
   throw CaseError("integrator = \"" + name + "\" is not known");
+}
+
+// The scene of a validated case (defaults filled in) from its initial state.
+template <int D>
+Scene<D> makeScene(const CaseConfig& c, InitialState<D> init) {
+  const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
+  std::optional<DampedReflectingWalls<D>> walls;
+  if (c.walls) walls = DampedReflectingWalls<D>{lo, hi, c.h, c.restitution};
+  return Scene<D>(std::move(init.particles), makeModel<D>(c), walls, StateCheck<D>{lo, hi},
+                  TimeStepControl{c.dt, c.cfl, init.startTime + c.endTime}, init.startTime,
+                  makeIntegrator<D>(c.integrator));
 }
 
 }  // namespace sph

@@ -67,10 +67,11 @@ struct Particles {
   // Allocate exactly the optional fields asked for; release the others.
   void allocate(const FieldNeeds& needs) {
     const std::size_t n = size();
-    sizeIf(vHalf, needs.halfStepVelocity, n);
-    sizeIf(c, needs.soundSpeed, n);
-    sizeIf(vXsph, needs.xsph, n);
-    for (auto* f : {&x0, &v0, &dx, &dv}) sizeIf(*f, needs.rungeKutta, n);
+    const Vec<D> zero = Vec<D>::Zero();
+    sizeIf(vHalf, needs.halfStepVelocity, n, zero);
+    sizeIf(c, needs.soundSpeed, n, Real(0));
+    sizeIf(vXsph, needs.xsph, n, zero);
+    for (auto* f : {&x0, &v0, &dx, &dv}) sizeIf(*f, needs.rungeKutta, n, zero);
   }
 
   void shrinkToFit() {
@@ -96,8 +97,8 @@ struct Particles {
 
  private:
   template <class T>
-  static void sizeIf(std::vector<T>& f, bool wanted, std::size_t n) {
-    if (wanted) f.resize(n, T{});
+  static void sizeIf(std::vector<T>& f, bool wanted, std::size_t n, const T& zero) {
+    if (wanted) f.resize(n, zero);
     else std::vector<T>().swap(f);
   }
 

@@ -1,0 +1,138 @@
+// Time integrators on problems with exact answers:
+// - free fall (one particle, gravity): leap-frog and RK4 exact to round-off;
+//   symplectic and explicit Euler off by -/+ g t dt / 2, as stated in
+//   ../shared/reference/single_particle_bounce.csv;
+// - a harmonic oscillator (the toy star's -lambda x on one particle): energy
+//   bounded over 1e5 steps for the symplectic schemes, growing for explicit
+//   Euler; RK4's error falls at fourth order with dt.
+#include "test_support.hpp"
+
+#include <cmath>
+
+using namespace sph;
+
+namespace {
+
+Scene<2> oneParticle(const std::string& integrator, Real dt, Real g, Real lambda, Vec<2> x0, Vec<2> v0) {
+  CaseConfig c = test::bareWcsph(2);
+  c.integrator = integrator;
+  c.dt = dt;
+  c.g = g;
+  c.points = {x0[0], x0[1]};
+  c.velocity = {v0[0], v0[1]};
+  Scene<2> s = test::sceneOf<2>(c);
+  if (lambda > 0) {
+    // Harmonic oscillator: a star attraction without a star.
+    WcsphTerms<2> terms;
+    terms.star = StarAttraction<2>{lambda};
+    Particles<2> P = s.particles();
+    Scene<2> osc(P, Wcsph<2>(CubicSpline<2>(c.h), LinearEos{c.k, c.rho0}, NoViscosity{}, c.rho0, terms),
+                 std::nullopt, StateCheck<2>{Vec<2>::Constant(-1e6), Vec<2>::Constant(1e6)},
+                 TimeStepControl{dt}, 0, makeIntegrator<2>(integrator));
+    BOOST_REQUIRE(!osc.initialise(false));
+    return osc;
+  }
+  return s;
+}
+
+// y(t_n) - (y0 - g t^2/2) after n steps, largest deviation from `offset(t)`.
+Real freeFallError(const std::string& integrator, Real dt, int steps, Real offsetSign) {
+  const Real g = 9.81, y0 = 0.5;
+  Scene<2> s = oneParticle(integrator, dt, g, 0, Vec<2>(0.5, y0), Vec<2>::Zero());
+  Real worst = 0;
+  for (int n = 1; n <= steps; ++n) {
+    BOOST_REQUIRE(!s.step());
+    const Real t = n * dt;
+    const Real expected = y0 - g * t * t / 2 + offsetSign * g * t * dt / 2;
+    worst = std::max(worst, std::abs(s.particles().x[0][1] - expected));
+  }
+  return worst;
+}
+
+Real energy(const Scene<2>& s) { return s.energy().total(); }
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(integrators)
+
+// Round-off bound: ~300 steps of additions to O(1) numbers, ~1e-13.
+BOOST_AUTO_TEST_CASE(free_fall_leap_frog_and_rk4_are_exact) {
+  BOOST_TEST(freeFallError("leap_frog", 1e-3, 300, 0) < 1e-12);
+  BOOST_TEST(freeFallError("rk4", 1e-3, 300, 0) < 1e-12);
+}
+
+// The offsets -g t dt/2 (symplectic Euler) and +g t dt/2 (explicit Euler)
+// are exact for constant gravity; without them the error would be g t dt/2
+// = 1.5e-3 m at t = 0.3 s.
+BOOST_AUTO_TEST_CASE(free_fall_euler_offsets_match_reference) {
+  BOOST_TEST(freeFallError("symplectic_euler", 1e-3, 300, -1) < 1e-12);
+  BOOST_TEST(freeFallError("euler", 1e-3, 300, +1) < 1e-12);
+  BOOST_TEST(freeFallError("symplectic_euler", 1e-3, 300, 0) > 1e-3);
+}
+
+// omega = 1 (lambda = 1), dt = 0.01: 1e5 steps = 159 periods.
+BOOST_AUTO_TEST_CASE(oscillator_energy_bounded_for_symplectic_schemes) {
+  for (const std::string name : {"leap_frog", "symplectic_euler"}) {
+    Scene<2> s = oneParticle(name, 0.01, 0, 1.0, Vec<2>(1, 0), Vec<2>(0, 0.5));
+    const Real e0 = energy(s);
+    Real worstEarly = 0, worstLate = 0;
+    for (int n = 1; n <= 100000; ++n) {
+      BOOST_REQUIRE(!s.step());
+      const Real err = std::abs(energy(s) / e0 - 1);
+      (n <= 10000 ? worstEarly : worstLate) = std::max(n <= 10000 ? worstEarly : worstLate, err);
+    }
+    BOOST_TEST_CONTEXT(name) {
+      // Bounded: the error of a symplectic scheme oscillates, O(dt) for
+      // symplectic Euler (~dt/2 = 5e-3), O(dt^2) for leap-frog (~1e-5)...
+      BOOST_TEST(worstLate < 1e-2);
+      // ...and does not grow: the last 90% of the run stays within 1.5x the
+      // first 10%.
+      BOOST_TEST(worstLate < 1.5 * worstEarly + 1e-12);
+    }
+  }
+}
+
+// Explicit Euler multiplies the oscillator energy by (1 + omega^2 dt^2)
+// every step: e^{10} after 1e5 steps at dt = 0.01.
+BOOST_AUTO_TEST_CASE(oscillator_energy_grows_with_explicit_euler) {
+  Scene<2> s = oneParticle("euler", 0.01, 0, 1.0, Vec<2>(1, 0), Vec<2>(0, 0.5));
+  const Real e0 = energy(s);
+  for (int n = 1; n <= 100000; ++n) BOOST_REQUIRE(!s.step());
+  const Real growth = energy(s) / e0;
+  BOOST_TEST(growth == std::exp(1e5 * std::log1p(1e-4)), boost::test_tools::tolerance(1e-6));
+}
+
+// Error of the phase-space state at t = 1.5 against x = cos t, v = -sin t.
+// (Not a whole period: there the position error of both schemes converges
+// one order faster than the scheme's order, which would hide it.)
+std::vector<Real> oscillatorErrors(const std::string& integrator, std::initializer_list<int> stepCounts) {
+  std::vector<Real> errors;
+  const Real T = 1.5;
+  for (int steps : stepCounts) {
+    Scene<2> s = oneParticle(integrator, T / steps, 0, 1.0, Vec<2>(1, 0), Vec<2>(0, 0));
+    for (int n = 0; n < steps; ++n) BOOST_REQUIRE(!s.step());
+    const Vec<2> dx = s.particles().x[0] - Vec<2>(std::cos(T), 0);
+    const Vec<2> dv = s.particles().v[0] - Vec<2>(-std::sin(T), 0);
+    errors.push_back(std::sqrt(dx.squaredNorm() + dv.squaredNorm()));
+  }
+  return errors;
+}
+
+// RK4: halving dt divides the error by ~16. Tolerance: the observed order
+// within 0.3 of 4.
+BOOST_AUTO_TEST_CASE(rk4_converges_at_fourth_order) {
+  const std::vector<Real> errors = oscillatorErrors("rk4", {10, 20, 40});
+  for (std::size_t k = 1; k < errors.size(); ++k) {
+    const Real order = std::log2(errors[k - 1] / errors[k]);
+    BOOST_TEST(std::abs(order - 4) < 0.3, "observed order " << order);
+  }
+}
+
+// Leap-frog is second order on the same problem.
+BOOST_AUTO_TEST_CASE(leap_frog_converges_at_second_order) {
+  const std::vector<Real> errors = oscillatorErrors("leap_frog", {20, 40, 80});
+  for (std::size_t k = 1; k < errors.size(); ++k)
+    BOOST_TEST(std::abs(std::log2(errors[k - 1] / errors[k]) - 2) < 0.2);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

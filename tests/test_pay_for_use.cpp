@@ -1,0 +1,91 @@
+// A scene pays only for what it enables: terms that a case switches off are
+// not constructed, and the arrays they need are not allocated.
+#include "test_support.hpp"
+
+#include <algorithm>
+
+using namespace sph;
+
+namespace {
+
+bool has(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+template <int D>
+std::vector<std::string> termsOf(const Scene<D>& s) {
+  return std::visit([](const auto& m) { return m.termNames(); }, s.model());
+}
+
+CaseConfig block(int dimension) {
+  CaseConfig c = test::bareWcsph(dimension);
+  c.h = 0.02;
+  c.spacing = 0.015;
+  c.blockMin.assign(static_cast<std::size_t>(dimension), 0.1);
+  c.blockMax.assign(static_cast<std::size_t>(dimension), 0.25);
+  return c;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(pay_for_use)
+
+BOOST_AUTO_TEST_CASE(a_minimal_scene_allocates_no_optional_field) {
+  CaseConfig c = block(2);
+  c.integrator = "symplectic_euler";
+  const Scene<2> s = test::sceneOf<2>(c);
+  const auto& P = s.particles();
+  BOOST_TEST(P.size() == 100u);
+  for (const auto* f : {&P.vHalf, &P.vXsph, &P.x0, &P.v0, &P.dx, &P.dv}) BOOST_TEST(f->empty());
+  BOOST_TEST(P.c.empty());
+  const auto terms = termsOf(s);
+  BOOST_TEST(!has(terms, "laplacian_viscosity"));
+  BOOST_TEST(!has(terms, "monaghan_viscosity"));
+  BOOST_TEST(!has(terms, "gravity"));
+  BOOST_TEST(!has(terms, "xsph"));
+  BOOST_TEST(has(terms, "symmetric_pressure"));
+}
+
+BOOST_AUTO_TEST_CASE(enabled_terms_allocate_exactly_their_fields) {
+  CaseConfig c = block(3);
+  c.viscosity = "monaghan";
+  c.xsph = 0.5;
+  c.integrator = "rk4";
+  c.g = 9.81;
+  const Scene<3> s = test::sceneOf<3>(c);
+  const auto& P = s.particles();
+  const std::size_t n = P.size();
+  BOOST_TEST(n == 1000u);
+  for (const auto* f : {&P.vXsph, &P.x0, &P.v0, &P.dx, &P.dv}) BOOST_TEST(f->size() == n);
+  BOOST_TEST(P.c.size() == n);
+  BOOST_TEST(P.vHalf.empty());  // RK4 keeps no half-step velocity
+  const auto terms = termsOf(s);
+  BOOST_TEST(has(terms, "monaghan_viscosity"));
+  BOOST_TEST(has(terms, "xsph"));
+  BOOST_TEST(has(terms, "gravity"));
+  // The memory difference is those 5 vector fields and one scalar per particle.
+  CaseConfig bare = block(3);
+  bare.integrator = "symplectic_euler";
+  const Scene<3> b = test::sceneOf<3>(bare);
+  BOOST_TEST(s.particles().bytesAllocated() - b.particles().bytesAllocated() >=
+             n * (5 * sizeof(Vec<3>) + sizeof(Real)));
+}
+
+BOOST_AUTO_TEST_CASE(viscosity_with_zero_coefficient_is_not_constructed) {
+  CaseConfig c = block(2);
+  c.viscosity = "laplacian";
+  c.mu = 0;
+  BOOST_TEST(!has(termsOf(test::sceneOf<2>(c)), "laplacian_viscosity"));
+  c.mu = 0.1;
+  BOOST_TEST(has(termsOf(test::sceneOf<2>(c)), "laplacian_viscosity"));
+  // The seed model: mu = 0 and g = 0 leave its viscosity and gravity out.
+  CaseConfig seed;
+  seed.points = {0.5, 0.5};
+  seed.mu = 0;
+  seed.g = 0;
+  const auto seedTerms = termsOf(test::sceneOf<2>(seed));
+  BOOST_TEST(!has(seedTerms, "seed_viscosity"));
+  BOOST_TEST(!has(seedTerms, "gravity"));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
