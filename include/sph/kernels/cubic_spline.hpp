@@ -34,8 +34,12 @@ struct CubicSpline {
   static constexpr const char* name = "cubic_spline";
 
   explicit CubicSpline(Real h)
-      : h_(h), support_(2 * h), invH_(1 / h), sigma_((D == 2 ? 10 / (7 * M_PI) : 1 / M_PI) / std::pow(h, D)),
-        sigmaGrad_(sigma_ / h), sigmaLap_(sigma_ / (h * h)) {}
+      : h_(h),
+        support_(2 * h),
+        invH_(1 / h),
+        sigma_((D == 2 ? 10 / (7 * M_PI) : 1 / M_PI) / std::pow(h, D)),
+        sigmaGrad_(sigma_ / h),
+        sigmaLap_(sigma_ / (h * h)) {}
 
   Real h() const { return h_; }
   Real support() const { return support_; }

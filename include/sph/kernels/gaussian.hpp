@@ -39,7 +39,11 @@ struct Gaussian {
   static constexpr const char* name = "gaussian";
 
   explicit Gaussian(Real h)
-      : h_(h), support_(3 * h), invH_(1 / h), sigma_(sigmaD() / std::pow(h, D)), sigmaGrad_(sigma_ / h),
+      : h_(h),
+        support_(3 * h),
+        invH_(1 / h),
+        sigma_(sigmaD() / std::pow(h, D)),
+        sigmaGrad_(sigma_ / h),
         sigmaLap_(sigma_ / (h * h)) {}
 
   Real h() const { return h_; }

@@ -50,7 +50,9 @@ struct Muller {
   static constexpr const char* name = "muller";
 
   explicit Muller(Real h)
-      : h_(h), h2_(h * h), invH_(1 / h),
+      : h_(h),
+        h2_(h * h),
+        invH_(1 / h),
         cPoly6_(D == 2 ? 4 / (M_PI * std::pow(h, 8)) : 315 / (64 * M_PI * std::pow(h, 9))),
         cSpiky_(D == 2 ? 10 / (M_PI * std::pow(h, 5)) : 15 / (M_PI * std::pow(h, 6))),
         cViscosity_(D == 2 ? 10 / (9 * M_PI * h * h) : 15 / (2 * M_PI * h * h * h)),

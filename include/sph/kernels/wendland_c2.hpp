@@ -30,9 +30,12 @@ struct WendlandC2 {
   static constexpr const char* name = "wendland_c2";
 
   explicit WendlandC2(Real h)
-      : h_(h), support_(2 * h), invH_(1 / h),
+      : h_(h),
+        support_(2 * h),
+        invH_(1 / h),
         sigma_((D == 2 ? 7 / (4 * M_PI) : 21 / (16 * M_PI)) / std::pow(h, D)),
-        sigmaGrad_(sigma_ / h), sigmaLap_(sigma_ / (h * h)) {}
+        sigmaGrad_(sigma_ / h),
+        sigmaLap_(sigma_ / (h * h)) {}
 
   Real h() const { return h_; }
   Real support() const { return support_; }

@@ -3,14 +3,30 @@
 //
 //   a_i = (mu / rho_i) sum_j m_j (v_j - v_i) / rho_j  lap W(r_ij, h)
 //
-// mu: dynamic viscosity. With the Mueller kernel set, lap W is the Laplacian
-// of the viscosity kernel (positive inside the support, so the term always
-// damps relative motion); other kernels use their own Laplacian.
+// mu: dynamic viscosity. "lap W" must be positive for the term to damp
+// relative motion. With the Mueller kernel set it is the Laplacian of the
+// viscosity kernel, designed for that. A bell-shaped kernel's true Laplacian
+// is negative in its core and would amplify relative motion, so the other
+// kernels use the Brookshaw (1985) / Morris, Fox & Zhu (1997) estimate
+//   lap W ~ -2 (dW/dr) / r,
+// positive and finite at r = 0, the standard SPH Laplacian operator.
 #pragma once
 
+#include "sph/kernels/muller.hpp"
 #include "sph/terms/pair_accelerations.hpp"
 
 namespace sph {
+
+// The positive Laplacian the viscosity uses, per kernel.
+template <class Kernel>
+Real viscosityLaplacian(const Kernel& k, Real r) {
+  return r > 0 ? -2 * k.dWdr(r) / r : -2 * k.dWdr(1e-9 * k.h()) / (1e-9 * k.h());
+}
+
+template <int D>
+Real viscosityLaplacian(const Muller<D>& k, Real r) {
+  return k.laplacianW(r);
+}
 
 template <class Kernel>
 struct LaplacianViscosity {
@@ -20,7 +36,7 @@ struct LaplacianViscosity {
 
   template <int D>
   Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
-    return (mu * P.m[c.j] / (P.rho[c.i] * P.rho[c.j]) * kernel.laplacianW(c.r)) *
+    return (mu * P.m[c.j] / (P.rho[c.i] * P.rho[c.j]) * viscosityLaplacian(kernel, c.r)) *
            (P.v[c.j] - P.v[c.i]);
   }
 };

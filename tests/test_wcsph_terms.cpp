@@ -1,0 +1,190 @@
+// The wcsph model's terms on hand-sized systems:
+// - two particles against ../shared/reference/two_particle_examples.csv
+//   (density, pressure and the symmetric pressure acceleration, worked out
+//   analytically by someone else);
+// - momentum conservation with every kernel and both viscosities;
+// - Monaghan viscosity acts only on approaching pairs; the Laplacian
+//   viscosity damps relative motion for every kernel;
+// - the adaptive time step names the criterion that set it.
+#include "test_support.hpp"
+
+#include <fstream>
+#include <random>
+
+using namespace sph;
+
+namespace {
+
+struct TwoParticleRow {
+  std::string kernel;
+  int dim;
+  Real rOverH, rho, p, rho0, ax;
+};
+
+std::vector<TwoParticleRow> readTwoParticleExamples() {
+  std::ifstream in(test::referenceFile("two_particle_examples.csv"));
+  BOOST_TEST_REQUIRE(in.good(), "cannot read two_particle_examples.csv");
+  std::vector<TwoParticleRow> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("kernel", 0) == 0) continue;
+    // kernel,dim,r/h,W(0),W(r),dW/dr(r),rho_i,p_i(rho0=rho0),a_x_i
+    for (char& ch : line)
+      if (ch == ',' || ch == '(' || ch == ')' || ch == '=') ch = ' ';
+    std::istringstream s(line);
+    TwoParticleRow r;
+    std::string rho0Word;
+    Real w0, wr, dw;
+    s >> r.kernel >> r.dim >> r.rOverH >> w0 >> wr >> dw >> r.rho >> r.p >> rho0Word >> r.rho0 >> r.ax;
+    BOOST_TEST_REQUIRE(!s.fail(), "cannot parse: " << line);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+template <int D>
+Scene<D> twoParticles(const std::string& kernel, Real r, Real h, Real rho0, Real k,
+                      const std::string& viscosity = "none", Vec<D> v0 = Vec<D>::Zero(),
+                      Vec<D> v1 = Vec<D>::Zero()) {
+  Particles<D> P;
+  P.x = {Vec<D>::Zero(), Vec<D>::Unit(0) * r};
+  P.v = {v0, v1};
+  P.m = {1, 1};
+  P.id = {0, 1};
+  P.resize(2);
+  CaseConfig c = test::bareWcsph(D);
+  c.kernel = kernel, c.h = h, c.rho0 = rho0, c.k = k, c.viscosity = viscosity, c.mu = 0.5;
+  c = withDefaults(c);
+  Scene<D> s(std::move(P), makeModel<D>(c), std::nullopt,
+             StateCheck<D>{Vec<D>::Constant(-100), Vec<D>::Constant(100)}, TimeStepControl{1e-3}, 0,
+             makeIntegrator<D>("leap_frog"));
+  BOOST_REQUIRE(!s.initialise(false));
+  return s;
+}
+
+template <int D>
+void checkTwoParticleRow(const TwoParticleRow& row) {
+  const std::string kernel = row.kernel == "cubic" ? "cubic_spline" : "wendland_c2";
+  // h = 1, m = 1, p = c^2 (rho - rho0) with c = 1: the linear EOS with k = 1.
+  const Scene<D> s = twoParticles<D>(kernel, row.rOverH, 1.0, row.rho0, 1.0);
+  const std::size_t i = test::indexOf(s, 0);
+  const auto& P = s.particles();
+  // The reference prints 6 decimals: 5e-6 absolute, plus 1e-5 relative.
+  BOOST_TEST_CONTEXT(row.kernel << " " << D << "D r/h = " << row.rOverH) {
+    BOOST_TEST(std::abs(P.rho[i] - row.rho) < 5e-6 + 1e-5 * row.rho);
+    BOOST_TEST(std::abs(P.p[i] - row.p) < 5e-6 + 1e-5 * row.p);
+    BOOST_TEST(std::abs(P.a[i][0] - row.ax) < 5e-6 + 1e-5 * std::abs(row.ax));
+    for (int d = 1; d < D; ++d) BOOST_TEST(std::abs(P.a[i][d]) < 1e-15);
+  }
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(wcsph_terms)
+
+BOOST_AUTO_TEST_CASE(two_particles_match_reference_examples) {
+  int checked = 0;
+  for (const auto& row : readTwoParticleExamples()) {
+    if (row.kernel != "cubic" && row.kernel != "wendlandC2") continue;
+    if (row.dim == 2) checkTwoParticleRow<2>(row), ++checked;
+    if (row.dim == 3) checkTwoParticleRow<3>(row), ++checked;
+  }
+  BOOST_TEST(checked >= 10);
+}
+
+// A jittered lattice with random velocities, no walls, no gravity: total
+// momentum is conserved to round-off with every kernel and viscosity.
+BOOST_AUTO_TEST_CASE(momentum_is_conserved_for_every_kernel_and_viscosity) {
+  for (const std::string kernel : {"cubic_spline", "wendland_c2", "gaussian", "muller"})
+    for (const std::string viscosity : {"laplacian", "monaghan"}) {
+      CaseConfig c = test::bareWcsph(2);
+      c.kernel = kernel, c.viscosity = viscosity, c.mu = 0.01;
+      c.eos = "tait", c.c0 = 20, c.rho0 = 1000;
+      c.h = kernel == "muller" ? 0.026 : 0.013;
+      c.spacing = 0.01;
+      c.blockMin = {0, 0}, c.blockMax = {0.2, 0.2};
+      c.dt = 1e-4;
+      Scene<2> s = test::sceneOf<2>(c);
+      std::mt19937 rng(1);
+      std::uniform_real_distribution<Real> u(-1, 1);
+      for (auto& v : s.particles().v) v = Vec<2>(u(rng), u(rng));
+      auto momentum = [&] {
+        Vec<2> p = Vec<2>::Zero();
+        Real scale = 0;
+        for (std::size_t i = 0; i < s.particles().size(); ++i) {
+          p += s.particles().m[i] * s.particles().v[i];
+          scale += s.particles().m[i] * s.particles().v[i].norm();
+        }
+        return std::make_pair(p, scale);
+      };
+      const auto [p0, scale] = momentum();
+      for (int n = 0; n < 100; ++n) BOOST_REQUIRE(!s.step());
+      BOOST_TEST_CONTEXT(kernel << " + " << viscosity) {
+        BOOST_TEST((momentum().first - p0).norm() < 1e-12 * scale);
+      }
+    }
+}
+
+// Separating pairs feel no artificial viscosity; approaching pairs are pushed
+// apart harder than by pressure alone.
+BOOST_AUTO_TEST_CASE(monaghan_viscosity_acts_only_on_approaching_pairs) {
+  const Vec<2> right(1, 0);
+  const Real rho0 = 1.0;
+  const Scene<2> still = twoParticles<2>("cubic_spline", 0.8, 1.0, rho0, 1.0, "none");
+  const Scene<2> apart = twoParticles<2>("cubic_spline", 0.8, 1.0, rho0, 1.0, "monaghan", -right, right);
+  const Scene<2> closing = twoParticles<2>("cubic_spline", 0.8, 1.0, rho0, 1.0, "monaghan", right, -right);
+  const auto i = [](const Scene<2>& s) { return test::indexOf(s, 0); };
+  BOOST_TEST(apart.particles().a[i(apart)][0] == still.particles().a[i(still)][0]);
+  // Particle 0 sits at x = 0, left of particle 1: pushed further left.
+  BOOST_TEST(closing.particles().a[i(closing)][0] < still.particles().a[i(still)][0]);
+}
+
+// (a_visc) . v_01 < 0 for every kernel: the viscosity damps relative motion.
+BOOST_AUTO_TEST_CASE(laplacian_viscosity_damps_relative_motion_for_every_kernel) {
+  for (const std::string kernel : {"cubic_spline", "wendland_c2", "gaussian", "muller"})
+    for (Real r : {0.05, 0.3, 0.7}) {
+      const Vec<2> v0(0.3, 1.0);
+      const Scene<2> without = twoParticles<2>(kernel, r, 1.0, 1.0, 1.0, "none", v0);
+      const Scene<2> with = twoParticles<2>(kernel, r, 1.0, 1.0, 1.0, "laplacian", v0);
+      const std::size_t a = test::indexOf(with, 0), b = test::indexOf(without, 0);
+      const Vec<2> aVisc = with.particles().a[a] - without.particles().a[b];
+      BOOST_TEST_CONTEXT(kernel << " r = " << r) { BOOST_TEST(aVisc.dot(v0) < 0.0); }
+    }
+}
+
+// dt = min(C h / (c + |v|), 0.125 h^2 / nu, 0.25 sqrt(h / |a|)) and the
+// criterion that won is recorded.
+BOOST_AUTO_TEST_CASE(adaptive_time_step_names_its_criterion) {
+  CaseConfig c = test::bareWcsph(2);
+  c.eos = "tait", c.c0 = 50, c.rho0 = 1000, c.viscosity = "none";
+  c.spacing = 0.01, c.h = 0.013;
+  c.blockMin = {0, 0}, c.blockMax = {0.1, 0.1};
+  c.cfl = 0.25, c.dt = 1, c.endTime = 1;
+  Scene<2> s = test::sceneOf<2>(c);
+  // The block starts at rest; its densest particle sets c = c0 (rho/rho0)^3.
+  const Real rhoMax = *std::max_element(s.particles().rho.begin(), s.particles().rho.end());
+  const Real cMax = 50 * std::pow(rhoMax / 1000, 3);
+  BOOST_REQUIRE(!s.step());
+  BOOST_TEST(std::string(s.lastTimeStep().criterion) == "cfl");
+  BOOST_TEST(s.lastTimeStep().dt == 0.25 * 0.013 / cMax, boost::test_tools::tolerance(1e-12));
+
+  c.viscosity = "laplacian", c.mu = 1e3;  // nu = 1 m^2/s
+  Scene<2> v = test::sceneOf<2>(c);
+  BOOST_REQUIRE(!v.step());
+  BOOST_TEST(std::string(v.lastTimeStep().criterion) == "viscous");
+  BOOST_TEST(v.lastTimeStep().dt == 0.125 * 0.013 * 0.013 / 1.0, boost::test_tools::tolerance(1e-12));
+
+  c.viscosity = "none", c.g = 1e6;
+  Scene<2> f = test::sceneOf<2>(c);
+  BOOST_REQUIRE(!f.step());
+  BOOST_TEST(std::string(f.lastTimeStep().criterion) == "force");
+
+  // The last step is cut to land on end_time.
+  c.g = 0, c.endTime = 1e-4;
+  Scene<2> e = test::sceneOf<2>(c);
+  while (e.time() < 1e-4 * (1 - 1e-12)) BOOST_REQUIRE(!e.step());
+  BOOST_TEST(std::string(e.lastTimeStep().criterion) == "end");
+  BOOST_TEST(e.time() == 1e-4, boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
