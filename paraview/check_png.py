@@ -24,6 +24,7 @@ with /usr/bin/python3 or pvpython).  Exit status 0 when every check passes,
 """
 import argparse
 import sys
+sys.dont_write_bytecode = True   # keep the source tree clean
 
 try:
     import numpy as np

@@ -21,6 +21,7 @@ import os
 import shutil
 import subprocess
 import sys
+sys.dont_write_bytecode = True   # keep the source tree clean
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))

@@ -14,7 +14,6 @@ square (2D) or unit cube (3D) that slumps to the right over the steps.
         [--steps 5] [--dim 2] [--dx 0.02]
 """
 import argparse
-import math
 import os
 import sys
 

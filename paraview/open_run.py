@@ -12,6 +12,7 @@ File > Load State does the same for runs whose .pvd has the state's name.
 """
 import os
 import sys
+sys.dont_write_bytecode = True   # keep the source tree clean
 
 
 

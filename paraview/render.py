@@ -363,9 +363,9 @@ class RunInfo:
                 b += [lo[k] if k < len(lo) else 0.0,
                       hi[k] if k < len(hi) else 0.0]
             return tuple(b)
-        # Box around the particles of (a sample of) all steps ...
-        picks = steps if len(steps) <= 50 else [
-            steps[int(round(k * (len(steps) - 1) / 49.0))] for k in range(50)]
+        # Box around the particles of (a sample of 11 of) all steps ...
+        picks = steps if len(steps) <= 11 else [
+            steps[int(round(k * (len(steps) - 1) / 10.0))] for k in range(11)]
         lo, hi = [math.inf] * 3, [-math.inf] * 3
         for _, f in picks:
             _, b = field_data(f)
@@ -495,9 +495,10 @@ def color_by(display, view, field, component, ncomp, colormap, size):
             raise RenderError("unknown colour preset '%s'" % colormap)
     display.SetScalarBarVisibility(view, True)
     bar = pv.GetScalarBar(lut, view)
+    # ("|v|" would be nicer, but the legend's font drops the bars)
     title = field if ncomp == 1 else (
-        "|%s|" % field if component == "Magnitude"
-        else "%s %s" % (field, component))
+        ("speed" if field == "velocity" else field + " mag.")
+        if component == "Magnitude" else "%s %s" % (field, component))
     bar.Title = title
     bar.ComponentTitle = ""
     bar.Orientation = "Vertical"
@@ -743,10 +744,6 @@ def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
 
 def make_mp4(a, pvd, outputs):
     ffmpeg = shutil.which("ffmpeg")
-    if not ffmpeg:
-        raise RenderError("--mp4: ffmpeg is not installed (apt-get install "
-                          "ffmpeg); the frames are in %s"
-                          % os.path.dirname(os.path.abspath(outputs[0])))
     first = outputs[0]
     pattern = re.sub(r"_\d{5}\.png$", "_%05d.png", first)
     mp4 = a.mp4 or re.sub(r"_\d{5}\.png$", ".mp4", first)
@@ -775,6 +772,10 @@ def main(argv=None):
             check_field(a.field, arrays, steps[0][1])
         elif not a.state:
             check_field(DEFAULT_FIELD, arrays, steps[0][1])
+        if a.mp4 is not None and not shutil.which("ffmpeg"):
+            raise RenderError("--mp4 needs ffmpeg, which is not installed "
+                              "(apt-get install ffmpeg); or render the "
+                              "frames with --all and join them elsewhere")
         indices = choose_steps(a, steps)
         outputs = output_paths(a, pvd, steps, indices)
         ensure_paraview(argv)

@@ -200,7 +200,9 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     err << "sph: note: " << nearWall << " particle(s) start closer than h = " << c.h
         << " to a wall; the walls move them to distance h on the first step\n";
 
-  RunOutput<D> output(dir, c.name, SnapshotInfo{0, 0, c.h, c.spacing});
+  SnapshotInfo info{0, 0, c.h, c.spacing, {}, {}};
+  if (c.walls) info.domainMin = c.domainMin, info.domainMax = c.domainMax;
+  RunOutput<D> output(dir, c.name, info);
   TimeStepLog dtLog((dir / "timestep.csv").string(), c.cfl > 0);
   const long steps = c.cfl > 0 ? 0 : stepsFor(c);  // adaptive: until end_time
   const bool showProgress = c.progress && isatty(STDERR_FILENO);

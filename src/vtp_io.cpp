@@ -17,6 +17,7 @@
 #include <malloc.h>
 
 #include <filesystem>
+#include <utility>
 #include <stdexcept>
 
 namespace sph {
@@ -120,6 +121,11 @@ void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo
   addFieldValue(fd, "smoothing_length", info.smoothingLength);
   addFieldValue(fd, "dimension", static_cast<long long>(D));
   addFieldValue(fd, "particle_spacing", info.particleSpacing);
+  for (const auto& [name, values] : {std::pair<const char*, const std::vector<Real>&>{"domain_min", info.domainMin},
+                                     {"domain_max", info.domainMax}}) {
+    if (values.empty()) continue;
+    fd->AddArray(scalarArray(name, values));
+  }
 
   vtkNew<vtkXMLPolyDataWriter> writer;
   const std::string tmp = temporaryName(path);

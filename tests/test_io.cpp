@@ -27,7 +27,7 @@ BOOST_AUTO_TEST_CASE(vtp_round_trip_keeps_count_arrays_and_values) {
   for (int n = 0; n < 5; ++n) BOOST_REQUIRE(!s.step());
   const auto& P = s.particles();
   const std::string path = (dir / "snap.vtp").string();
-  writeVtp<2>(path, P, SnapshotInfo{s.time(), s.stepIndex(), 0.01, 0.0075});
+  writeVtp<2>(path, P, SnapshotInfo{s.time(), s.stepIndex(), 0.01, 0.0075, {0, 0}, {1, 1}});
   BOOST_TEST(!std::filesystem::exists(path + ".tmp"));
 
   vtkNew<vtkXMLPolyDataReader> reader;
@@ -58,6 +58,8 @@ BOOST_AUTO_TEST_CASE(vtp_round_trip_keeps_count_arrays_and_values) {
   BOOST_TEST(fd->GetArray("TimeValue")->GetTuple1(0) == s.time());
   BOOST_TEST(fd->GetArray("step")->GetTuple1(0) == 5.0);
   BOOST_TEST(fd->GetArray("dimension")->GetTuple1(0) == 2.0);
+  BOOST_TEST(fd->GetArray("domain_max")->GetNumberOfTuples() == 2);
+  BOOST_TEST(fd->GetArray("domain_max")->GetTuple1(1) == 1.0);
 
   // And back through sph's own reader.
   const VtpParticles back = readVtp(path);

@@ -5,7 +5,8 @@
 // Points are 3D (z = 0 in 2D) with one vertex cell each. Point data:
 // velocity, acceleration (3 components, also in 2D), density, pressure,
 // mass, id. Field data: TimeValue (ParaView's time key), step,
-// smoothing_length, dimension, particle_spacing.
+// smoothing_length, dimension, particle_spacing, and domain_min/domain_max
+// (D values each) when the scene has walls.
 #pragma once
 
 #include "sph/particles.hpp"
@@ -21,6 +22,7 @@ struct SnapshotInfo {
   long step = 0;
   Real smoothingLength = 0;
   Real particleSpacing = 0;
+  std::vector<Real> domainMin, domainMax;  // empty: no walls
 };
 
 // Written to a temporary name and renamed; throws std::runtime_error on failure.
