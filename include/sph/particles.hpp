@@ -64,6 +64,12 @@ struct Particles {
     id.resize(n, 0);
   }
 
+  // The velocity particle i drifts with when its velocity is `velocity`:
+  // that, plus the XSPH correction when the scene has one.
+  Vec<D> driftVelocity(std::size_t i, const Vec<D>& velocity) const {
+    return vXsph.empty() ? velocity : Vec<D>(velocity + vXsph[i]);
+  }
+
   // Allocate exactly the optional fields asked for; release the others.
   void allocate(const FieldNeeds& needs) {
     const std::size_t n = size();

@@ -17,10 +17,9 @@ struct ExplicitEuler {
   template <class Evaluate, class Constrain>
   void step(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain) const {
     const std::size_t n = P.size();
-    const bool xsph = !P.vXsph.empty();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) {
-      P.x[i] += dt * (xsph ? Vec<D>(P.v[i] + P.vXsph[i]) : P.v[i]);
+      P.x[i] += dt * P.driftVelocity(i, P.v[i]);
       P.v[i] += dt * P.a[i];
     }
     constrain();

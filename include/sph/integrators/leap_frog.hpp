@@ -29,11 +29,10 @@ struct LeapFrog {
   template <class Evaluate, class Constrain>
   void step(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain) const {
     const std::size_t n = P.size();
-    const bool xsph = !P.vXsph.empty();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) {
       P.vHalf[i] = P.v[i] + (dt / 2) * P.a[i];
-      P.x[i] += dt * (xsph ? Vec<D>(P.vHalf[i] + P.vXsph[i]) : P.vHalf[i]);
+      P.x[i] += dt * P.driftVelocity(i, P.vHalf[i]);
       P.v[i] = P.vHalf[i] + (dt / 2) * P.a[i];
     }
     constrain();

@@ -24,8 +24,7 @@ struct RungeKutta4 {
   template <class Evaluate, class Constrain>
   void step(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain) const {
     const std::size_t n = P.size();
-    const bool xsph = !P.vXsph.empty();
-    auto drift = [&](std::size_t i) { return xsph ? Vec<D>(P.v[i] + P.vXsph[i]) : P.v[i]; };
+    auto drift = [&](std::size_t i) { return P.driftVelocity(i, P.v[i]); };
     // k1 from the current state; then stages at dt/2, dt/2, dt.
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) {
