@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -201,6 +202,13 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         << " to a wall; the walls move them to distance h on the first step\n";
 
   SnapshotInfo info{0, 0, c.h, c.spacing, {}, {}};
+  if (c.starMass > 0) {
+    // Random star particles have no lattice spacing: give the mean one, so
+    // that renders size the particles sensibly.
+    const Real ball = D == 2 ? M_PI * c.starRadius * c.starRadius
+                             : 4 * M_PI / 3 * std::pow(c.starRadius, 3);
+    info.particleSpacing = std::pow(ball * static_cast<Real>(c.starParticles.size()) / static_cast<Real>(n), 1.0 / D);
+  }
   if (c.walls) info.domainMin = c.domainMin, info.domainMax = c.domainMax;
   RunOutput<D> output(dir, c.name, info);
   TimeStepLog dtLog((dir / "timestep.csv").string(), c.cfl > 0);
