@@ -11,7 +11,11 @@ namespace sph {
 void commitTemporary(const std::string& path) {
   std::error_code ec;
   std::filesystem::rename(temporaryName(path), path, ec);
-  if (ec) throw std::runtime_error("cannot write " + path + ": " + ec.message());
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(temporaryName(path), ignored);
+    throw std::runtime_error("cannot write " + path + ": " + ec.message());
+  }
 }
 
 void writeFileAtomically(const std::string& path, const std::string& content) {

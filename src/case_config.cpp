@@ -68,10 +68,10 @@ void validateCase(const CaseConfig& c) {
     requirePositive("gamma", c.gamma);
   }
   if (c.eos == "polytropic") requirePositive("polytropic_index", c.polytropicIndex);
-  if (c.viscosity == "monaghan" && !(c.alpha >= 0 && c.beta >= 0))
-    throw CaseError("alpha and beta must be >= 0");
+  if (!(c.alpha >= 0 && std::isfinite(c.alpha) && c.beta >= 0 && std::isfinite(c.beta)))
+    throw CaseError("alpha = " + fmt(c.alpha) + ", beta = " + fmt(c.beta) + " are out of range: both must be finite and >= 0");
   if (!(c.xsph >= 0 && c.xsph <= 1)) throw CaseError("xsph = " + fmt(c.xsph) + " is out of range: it must be in [0, 1]");
-  if (!(c.damping >= 0)) throw CaseError("damping = " + fmt(c.damping) + " is out of range: it must be >= 0");
+  if (!(c.damping >= 0 && std::isfinite(c.damping))) throw CaseError("damping = " + fmt(c.damping) + " is out of range: it must be >= 0");
   if (!(c.cfl >= 0 && c.cfl <= 2)) throw CaseError("cfl = " + fmt(c.cfl) + " is out of range: it must be in [0, 2] (0: fixed dt)");
   if (c.dimension != 2 && c.dimension != 3)
     throw CaseError("dimension = " + std::to_string(c.dimension) + " is out of range: it must be 2 or 3");
@@ -89,8 +89,12 @@ void validateCase(const CaseConfig& c) {
   requirePositive("end_time", c.endTime);
   if (c.outputEvery < 1)
     throw CaseError("output_every = " + std::to_string(c.outputEvery) + " is out of range: it must be >= 1");
-  if (c.threads < 0)
-    throw CaseError("threads = " + std::to_string(c.threads) + " is out of range: it must be >= 0 (0: all cores)");
+  if (c.threads < 0 || c.threads > kMaxThreads)
+    throw CaseError("threads = " + std::to_string(c.threads) + " is out of range: it must be in [0, " +
+                    std::to_string(kMaxThreads) + "] (0: all cores)");
+  if (c.endTime / c.dt > kMaxSteps)
+    throw CaseError("end_time / dt = " + fmt(c.endTime / c.dt) + " steps is out of range: at most " +
+                    fmt(kMaxSteps) + " (raise dt or lower end_time)");
   const int D = c.dimension;
   if (c.starMass != 0) {
     requirePositive("star_mass", c.starMass);
@@ -134,6 +138,21 @@ void validateCase(const CaseConfig& c) {
                     " values: it needs a multiple of " + std::to_string(D) + " (x y" +
                     (D == 3 ? " z" : "") + " per point)");
   if (c.spacing < 0) throw CaseError("spacing = " + fmt(c.spacing) + " is out of range: it must be > 0");
+  // Generated particle count, before anything is allocated: indices are
+  // 32-bit and memory is finite.
+  double count = static_cast<double>(c.points.size() / static_cast<std::size_t>(D));
+  const char* countKey = "points";
+  if (!c.blockMin.empty()) {
+    double block = 1;
+    for (int d = 0; d < D; ++d)
+      block *= std::round((c.blockMax[static_cast<std::size_t>(d)] - c.blockMin[static_cast<std::size_t>(d)]) / c.spacing);
+    count += block, countKey = "spacing";
+  }
+  if (!c.discCenter.empty()) count += std::pow(2 * std::floor(c.discRadius / c.spacing) + 1, D), countKey = "spacing";
+  for (long n : c.starParticles) count += static_cast<double>(n), countKey = "star_particles";
+  if (count > kMaxParticles)
+    throw CaseError(std::string(countKey) + " gives about " + fmt(count) + " particles: at most " +
+                    fmt(kMaxParticles) + " are allowed");
 }
 
 CaseConfig withDefaults(CaseConfig c) {

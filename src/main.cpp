@@ -56,7 +56,7 @@ void declareKeys(CLI::App& run, sph::CaseConfig& c) {
   wreal("--star_mass", c.starMass, "Toy star mass M [> 0; 0: no star]");
   wreal("--star_radius", c.starRadius, "Toy star radius R [m; > 0]");
   run.add_option("--star_particles", c.starParticles, "Particles per star [>= 1 each]")->group("wcsph model");
-  run.add_option("--star_center", c.starCenter, "Star centres [m; D values per star]")->group("wcsph model");
+  run.add_option("--star_center", c.starCenter, "Star centres [m; D values per star] (the attraction -lambda x always pulls to the origin)")->group("wcsph model");
   run.add_option("--star_velocity", c.starVelocity, "Star velocities [m/s; D values per star]")->group("wcsph model");
   run.add_option("--seed", c.seed, "Random seed of the star particles")->capture_default_str()->group("wcsph model");
   run.add_option("--integrator", c.integrator, "Time integrator [leap_frog (default) | symplectic_euler | rk4 | euler]")

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <new>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -166,6 +167,10 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   } catch (const CaseError& e) {
     err << "sph: error: " << e.what() << "\n";
     return kBadInput;
+  } catch (const std::bad_alloc&) {
+    err << "sph: error: not enough memory for the particles of this case (reduce spacing, "
+           "star_particles or the block/disc size)\n";
+    return kBadInput;
   }
   if (c.threads > 0) omp_set_num_threads(c.threads);
   const std::size_t n = init.particles.size();
@@ -188,10 +193,20 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   // Everything that can be checked has been: now, and only now, write.
   const std::filesystem::path dir(c.output);
   std::error_code ec;
+  // The first folder on the path that does not exist yet: removed again if
+  // the rest of the path cannot be created, so a failure writes nothing.
+  std::filesystem::path firstNew;
+  for (std::filesystem::path p = std::filesystem::absolute(dir, ec); !p.empty() && !std::filesystem::exists(p, ec);
+       p = p.parent_path()) {
+    firstNew = p;
+    if (p == p.parent_path()) break;
+  }
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir)) {
     err << "sph: error: output folder " << c.output << " cannot be created"
         << (ec ? ": " + ec.message() : std::string()) << "\n";
+    std::error_code ignored;
+    if (!firstNew.empty()) std::filesystem::remove_all(firstNew, ignored);
     return kBadInput;
   }
   if (!c.particleFile.empty() && (!c.blockMin.empty() || !c.discCenter.empty() || !c.points.empty()))
@@ -233,6 +248,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         err << "sph: error: " << failureMessage(*failure, scene.stepIndex(), scene.time())
             << "\nsph: the outputs up to step " << output.lastStep() << " (t = "
             << output.lastTime() << " s) are intact in " << output.seriesPath() << "\n";
+        dtLog.flush();  // the dt history up to the failure is what explains it
         status = kBlewUp;
         break;
       }

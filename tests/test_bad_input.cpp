@@ -59,6 +59,16 @@ BOOST_AUTO_TEST_CASE(restitution_outside_unit_interval) {
 BOOST_AUTO_TEST_CASE(output_every_below_one) { expectRejected({"--output_every", "0"}, "output_every = 0"); }
 BOOST_AUTO_TEST_CASE(unknown_model) { expectRejected({"--model", "sph2000"}, "model = \"sph2000\" is not known"); }
 BOOST_AUTO_TEST_CASE(dimension_out_of_range) { expectRejected({"--dimension", "4"}, "dimension = 4"); }
+BOOST_AUTO_TEST_CASE(threads_out_of_range) { expectRejected({"--threads", "100000"}, "threads = 100000 is out of range"); }
+BOOST_AUTO_TEST_CASE(too_many_steps) { expectRejected({"--dt", "1e-300"}, "end_time / dt = "); }
+BOOST_AUTO_TEST_CASE(too_many_particles) {
+  expectRejected({"--spacing", "1e-7"}, "spacing gives about");
+  expectRejected({"--star_particles", "100000000000"}, "star_particles gives about", "toy_star_2d");
+}
+BOOST_AUTO_TEST_CASE(non_finite_coefficients) {
+  expectRejected({"--damping", "inf"}, "damping = inf is out of range", "toy_star_2d");
+  expectRejected({"--alpha", "inf"}, "alpha = inf", "star_collision_2d");
+}
 BOOST_AUTO_TEST_CASE(vector_of_wrong_length) { expectRejected({"--domain_min", "0"}, "domain_min has 1 values"); }
 
 BOOST_AUTO_TEST_CASE(particle_outside_domain) {
@@ -92,6 +102,12 @@ BOOST_AUTO_TEST_CASE(output_folder_cannot_be_created) {
   const auto r = test::runSph({"run", test::caseFile("one_particle"), "--output", file + "/sub"});
   BOOST_TEST(r.exitCode == 2);
   BOOST_TEST(r.output.find("output folder " + file + "/sub cannot be created") != std::string::npos, r.output);
+  // A path that fails deep down leaves none of the folders it did create.
+  const auto base = test::scratchDir("deep");
+  const std::string tooLong(300, 'a');
+  const auto r2 = test::runSph({"run", test::caseFile("one_particle"), "--output", (base / "new" / tooLong).string()});
+  BOOST_TEST(r2.exitCode == 2);
+  BOOST_TEST(!std::filesystem::exists(base / "new"));
 }
 
 BOOST_AUTO_TEST_CASE(missing_case_file) {

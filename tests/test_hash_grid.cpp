@@ -7,6 +7,8 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <random>
 #include <set>
@@ -145,6 +147,31 @@ BOOST_AUTO_TEST_CASE(sparse_points_with_hash_collisions_3d) {
   const std::size_t n = x.size();
   for (std::size_t i = 0; i < n; ++i) x.push_back(x[i] + Vec<3>(0.004, -0.003, 0.002));
   checkAgainstBruteForce<3>(x, 0.01);
+}
+
+// One list rebuilt with thread counts going up and down (its per-thread
+// buffers and chunk bounds are reused), around the serial threshold too.
+BOOST_AUTO_TEST_CASE(neighbour_list_survives_changing_thread_counts) {
+  const int before = omp_get_max_threads();
+  NeighbourList<2> list;
+  for (std::size_t n : {100u, 513u, 520u, 3000u})
+    for (int threads : {2, 1, 4, 3, 8, 1, 7, 2}) {
+      omp_set_num_threads(threads);
+      Particles<2> P = particlesAt<2>(uniform<2>(n, 0, 1, static_cast<unsigned>(n + threads)));
+      const Real radius = 2.5 / std::sqrt(static_cast<Real>(n));
+      const auto expected = bruteForce<2>(P.x, P.id, radius);
+      HashGrid<2> grid(radius);
+      grid.build(P.x);
+      P.permute(grid.order());
+      list.build(grid, P.x, radius);
+      PairSet<2> found;
+      for (std::size_t i = 0; i < P.size(); ++i) list.forEach(i, [&](std::uint32_t j) { found.insert({P.id[i], P.id[j]}); });
+      BOOST_TEST_CONTEXT("n = " << n << ", threads = " << threads) {
+        BOOST_TEST((found == expected));
+        BOOST_TEST(list.pairCount() == expected.size());
+      }
+    }
+  omp_set_num_threads(before);
 }
 
 // The sort is a permutation: every particle keeps its data.

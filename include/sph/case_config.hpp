@@ -78,6 +78,12 @@ struct CaseConfig {
   bool progress = true;              // progress line when stderr is a terminal
 };
 
+// Limits of validateCase: 32-bit particle indices, OpenMP team sizes, and a
+// step count that a long can hold with room to spare.
+constexpr double kMaxParticles = 1e9;
+constexpr int kMaxThreads = 1024;
+constexpr double kMaxSteps = 1e12;
+
 void validateCase(const CaseConfig& c);
 
 // The first D values of a validated vector key as a Vec<D>.

@@ -1,6 +1,7 @@
 // Linear attraction of the toy star: a_i = -lambda x_i (a fixed external
 // potential Phi = lambda |x|^2 / 2 standing in for self-gravity; Monaghan &
 // Price 2004, "Toy stars in one dimension", and Mocz's toy-star tutorial).
+// The potential is centred at the origin, whatever star_center says.
 // lambda follows from the star's mass, radius, k, n and the dimension (toy_star.hpp).
 #pragma once
 
