@@ -1,5 +1,7 @@
 // A scene pays only for what it enables: terms that a case switches off are
-// not constructed, and the arrays they need are not allocated.
+// not constructed, their passes never run (executedTerms() reports the term
+// types the pair loop was instantiated with), and the arrays they need are
+// not allocated.
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -17,6 +19,15 @@ std::vector<std::string> termsOf(const Scene<D>& s) {
   return std::visit([](const auto& m) { return m.termNames(); }, s.model());
 }
 
+// The passes the last evaluation actually ran: the bits come from the term
+// types instantiated in the pair loop and from the body-force loops that ran.
+template <int D>
+unsigned executed(const Scene<D>& s) {
+  return std::visit([](const auto& m) { return m.executedTerms(); }, s.model());
+}
+
+using namespace term_bits;
+
 CaseConfig block(int dimension) {
   CaseConfig c = test::bareWcsph(dimension);
   c.h = 0.02;
@@ -33,7 +44,11 @@ BOOST_AUTO_TEST_SUITE(pay_for_use)
 BOOST_AUTO_TEST_CASE(a_minimal_scene_allocates_no_optional_field) {
   CaseConfig c = block(2);
   c.integrator = "symplectic_euler";
-  const Scene<2> s = test::sceneOf<2>(c);
+  Scene<2> s = test::sceneOf<2>(c);
+  BOOST_REQUIRE(!s.step());
+  const unsigned ran = executed(s);
+  BOOST_TEST((ran & kSymmetricPressure) != 0u);
+  BOOST_TEST((ran & (kLaplacianViscosity | kMonaghanViscosity | kGravity | kXsph | kDamping | kStarAttraction)) == 0u);
   const auto& P = s.particles();
   BOOST_TEST(P.size() == 100u);
   for (const auto* f : {&P.vHalf, &P.vXsph, &P.x0, &P.v0, &P.dx, &P.dv}) BOOST_TEST(f->empty());
@@ -52,7 +67,11 @@ BOOST_AUTO_TEST_CASE(enabled_terms_allocate_exactly_their_fields) {
   c.xsph = 0.5;
   c.integrator = "rk4";
   c.g = 9.81;
-  const Scene<3> s = test::sceneOf<3>(c);
+  Scene<3> s = test::sceneOf<3>(c);
+  BOOST_REQUIRE(!s.step());
+  const unsigned ran = executed(s);
+  for (unsigned bit : {kSymmetricPressure, kMonaghanViscosity, kXsph, kGravity}) BOOST_TEST((ran & bit) != 0u);
+  BOOST_TEST((ran & kLaplacianViscosity) == 0u);
   const auto& P = s.particles();
   const std::size_t n = P.size();
   BOOST_TEST(n == 1000u);
@@ -76,16 +95,21 @@ BOOST_AUTO_TEST_CASE(viscosity_with_zero_coefficient_is_not_constructed) {
   c.viscosity = "laplacian";
   c.mu = 0;
   BOOST_TEST(!has(termsOf(test::sceneOf<2>(c)), "laplacian_viscosity"));
+  BOOST_TEST((executed(test::sceneOf<2>(c)) & kLaplacianViscosity) == 0u);
   c.mu = 0.1;
   BOOST_TEST(has(termsOf(test::sceneOf<2>(c)), "laplacian_viscosity"));
+  BOOST_TEST((executed(test::sceneOf<2>(c)) & kLaplacianViscosity) != 0u);
   // The seed model: mu = 0 and g = 0 leave its viscosity and gravity out.
   CaseConfig seed;
   seed.points = {0.5, 0.5};
   seed.mu = 0;
   seed.g = 0;
-  const auto seedTerms = termsOf(test::sceneOf<2>(seed));
+  const auto seedScene = test::sceneOf<2>(seed);
+  const auto seedTerms = termsOf(seedScene);
   BOOST_TEST(!has(seedTerms, "seed_viscosity"));
   BOOST_TEST(!has(seedTerms, "gravity"));
+  BOOST_TEST((executed(seedScene) & (kSeedViscosity | kGravity)) == 0u);
+  BOOST_TEST((executed(seedScene) & kSeedPressure) != 0u);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

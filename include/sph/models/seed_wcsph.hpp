@@ -68,18 +68,22 @@ class SeedWcsph {
   void computeDerived(Particles<D>& P, const NeighbourList<D>& neighbours) const {
     computeDensity(P, neighbours);
     computePressure(P, eos_);
+    executed_ = term_bits::kSummationDensity | term_bits::kEquationOfState;
     const auto pair = std::make_tuple(pressure_);
     if (viscosity_ && gravity_)
-      computeAccelerations(P, neighbours, support(), std::tuple_cat(pair, std::make_tuple(*viscosity_)),
+      executed_ |= computeAccelerations(P, neighbours, support(), std::tuple_cat(pair, std::make_tuple(*viscosity_)),
                            std::make_tuple(*gravity_));
     else if (viscosity_)
-      computeAccelerations(P, neighbours, support(), std::tuple_cat(pair, std::make_tuple(*viscosity_)),
+      executed_ |= computeAccelerations(P, neighbours, support(), std::tuple_cat(pair, std::make_tuple(*viscosity_)),
                            std::tuple<>());
     else if (gravity_)
-      computeAccelerations(P, neighbours, support(), pair, std::make_tuple(*gravity_));
+      executed_ |= computeAccelerations(P, neighbours, support(), pair, std::make_tuple(*gravity_));
     else
-      computeAccelerations(P, neighbours, support(), pair, std::tuple<>());
+      executed_ |= computeAccelerations(P, neighbours, support(), pair, std::tuple<>());
   }
+
+  // The passes the last computeDerived() ran (term_bits.hpp).
+  unsigned executedTerms() const { return executed_; }
 
   void computeDensity(Particles<D>& P, const NeighbourList<D>& neighbours) const {
     computeSummationDensity(P, neighbours, kernels_);
@@ -99,6 +103,7 @@ class SeedWcsph {
   SeedPressure pressure_;
   std::optional<SeedViscosity> viscosity_;
   std::optional<UniformGravity<D>> gravity_;
+  mutable unsigned executed_ = 0;
 };
 
 }  // namespace sph

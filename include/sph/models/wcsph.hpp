@@ -109,6 +109,7 @@ class Wcsph {
   void computeDerived(Particles<D>& P, const NeighbourList<D>& neighbours) const {
     computeDensity(P, neighbours);
     std::visit([&](const auto& eos) { computePressure(P, eos); }, eos_);
+    unsigned executed = term_bits::kSummationDensity | term_bits::kEquationOfState;
     std::visit(
         [&](const auto& k, const auto& visc) {
           using K = std::decay_t<decltype(k)>;
@@ -116,22 +117,29 @@ class Wcsph {
           const Real s = k.support();
           const auto pressure = std::make_tuple(SymmetricPressure<K>{k});
           if constexpr (std::is_same_v<V, LaplacianViscosityChoice>)
-            computeAccelerations(P, neighbours, s,
+            executed |= computeAccelerations(P, neighbours, s,
                                  std::tuple_cat(pressure, std::make_tuple(LaplacianViscosity<K>{k, visc.mu})),
                                  std::tuple<>());
           else if constexpr (std::is_same_v<V, MonaghanViscosityChoice>)
-            computeAccelerations(P, neighbours, s,
+            executed |= computeAccelerations(P, neighbours, s,
                                  std::tuple_cat(pressure, std::make_tuple(MonaghanViscosity<K>{k, visc.alpha, visc.beta})),
                                  std::tuple<>());
           else
-            computeAccelerations(P, neighbours, s, pressure, std::tuple<>());
-          if (terms_.xsphEpsilon > 0) computeXsphCorrection(P, neighbours, k, terms_.xsphEpsilon);
+            executed |= computeAccelerations(P, neighbours, s, pressure, std::tuple<>());
+          if (terms_.xsphEpsilon > 0) {
+            computeXsphCorrection(P, neighbours, k, terms_.xsphEpsilon);
+            executed |= term_bits::kXsph;
+          }
         },
         kernel_, viscosity_);
-    addBodyForce(P, terms_.gravity);
-    addBodyForce(P, terms_.star);
-    addBodyForce(P, terms_.damping);
+    executed |= addBodyForce(P, terms_.gravity);
+    executed |= addBodyForce(P, terms_.star);
+    executed |= addBodyForce(P, terms_.damping);
+    executed_ = executed;
   }
+
+  // The passes the last computeDerived() ran (term_bits.hpp).
+  unsigned executedTerms() const { return executed_; }
 
   Real potentialEnergy(const Particles<D>& P) const {
     Real e = 0;
@@ -161,11 +169,12 @@ class Wcsph {
 
  private:
   template <class Body>
-  static void addBodyForce(Particles<D>& P, const std::optional<Body>& body) {
-    if (!body) return;
+  static unsigned addBodyForce(Particles<D>& P, const std::optional<Body>& body) {
+    if (!body) return 0;
     const std::size_t n = P.size();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) P.a[i] += body->acceleration(i, P);
+    return Body::bit;
   }
 
   Kernel<D> kernel_;
@@ -173,6 +182,7 @@ class Wcsph {
   ViscosityChoice viscosity_;
   Real rho0_;
   WcsphTerms<D> terms_;
+  mutable unsigned executed_ = 0;
 };
 
 }  // namespace sph

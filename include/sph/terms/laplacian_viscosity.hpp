@@ -12,6 +12,8 @@
 // positive and finite at r = 0, the standard SPH Laplacian operator.
 #pragma once
 
+#include "sph/terms/term_bits.hpp"
+
 #include "sph/kernels/muller.hpp"
 #include "sph/terms/pair_accelerations.hpp"
 
@@ -30,6 +32,7 @@ Real viscosityLaplacian(const Muller<D>& k, Real r) {
 
 template <class Kernel>
 struct LaplacianViscosity {
+  static constexpr unsigned bit = term_bits::kLaplacianViscosity;
   Kernel kernel;
   Real mu;
   static constexpr bool isForceDensity = false;

@@ -10,12 +10,15 @@
 // for approaching pairs; needs the sound speed c of every particle.
 #pragma once
 
+#include "sph/terms/term_bits.hpp"
+
 #include "sph/terms/pair_accelerations.hpp"
 
 namespace sph {
 
 template <class Kernel>
 struct MonaghanViscosity {
+  static constexpr unsigned bit = term_bits::kMonaghanViscosity;
   Kernel kernel;
   Real alpha, beta;
   static constexpr Real eps = 0.01;

@@ -39,8 +39,16 @@ struct HasForceDensityTerm<std::tuple<T...>> {
   static constexpr bool value = (T::isForceDensity || ... || false);
 };
 
+template <class Tuple>
+struct TermBitsOf;
+template <class... T>
+struct TermBitsOf<std::tuple<T...>> {
+  static constexpr unsigned value = (T::bit | ... | 0u);
+};
+
+// Returns the bits of the terms it ran (term_bits.hpp).
 template <int D, class PairTerms, class BodyTerms>
-void computeAccelerations(Particles<D>& P, const NeighbourList<D>& neighbours, Real support,
+unsigned computeAccelerations(Particles<D>& P, const NeighbourList<D>& neighbours, Real support,
                           const PairTerms& pairTerms, const BodyTerms& bodyTerms) {
   const std::size_t n = P.size();
   const Real invSupport = 1 / support;
@@ -71,6 +79,7 @@ void computeAccelerations(Particles<D>& P, const NeighbourList<D>& neighbours, R
     std::apply([&](const auto&... t) { ((a += t.acceleration(i, P)), ...); }, bodyTerms);
     P.a[i] = a;
   }
+  return TermBitsOf<PairTerms>::value | TermBitsOf<BodyTerms>::value;
 }
 
 }  // namespace sph

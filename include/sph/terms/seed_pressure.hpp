@@ -8,12 +8,15 @@
 // state check reports it (the seed scheme has no guard against it).
 #pragma once
 
+#include "sph/terms/term_bits.hpp"
+
 #include "sph/kernels/seed_kernels.hpp"
 #include "sph/terms/pair_accelerations.hpp"
 
 namespace sph {
 
 struct SeedPressure {
+  static constexpr unsigned bit = term_bits::kSeedPressure;
   SeedKernels kernels;
 
   static constexpr bool isForceDensity = true;

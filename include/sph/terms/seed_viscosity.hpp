@@ -6,12 +6,15 @@
 // mu is the dynamic viscosity; a case with mu = 0 does not construct this term.
 #pragma once
 
+#include "sph/terms/term_bits.hpp"
+
 #include "sph/kernels/seed_kernels.hpp"
 #include "sph/terms/pair_accelerations.hpp"
 
 namespace sph {
 
 struct SeedViscosity {
+  static constexpr unsigned bit = term_bits::kSeedViscosity;
   SeedKernels kernels;
   Real mu;
 

@@ -5,12 +5,15 @@
 // lambda follows from the star's mass, radius, k, n and the dimension (toy_star.hpp).
 #pragma once
 
+#include "sph/terms/term_bits.hpp"
+
 #include "sph/particles.hpp"
 
 namespace sph {
 
 template <int D>
 struct StarAttraction {
+  static constexpr unsigned bit = term_bits::kStarAttraction;
   Real lambda;
 
   Vec<D> acceleration(std::size_t i, const Particles<D>& P) const { return -lambda * P.x[i]; }

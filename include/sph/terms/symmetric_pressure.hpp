@@ -6,12 +6,15 @@
 // Antisymmetric in i, j, so total momentum is conserved exactly.
 #pragma once
 
+#include "sph/terms/term_bits.hpp"
+
 #include "sph/terms/pair_accelerations.hpp"
 
 namespace sph {
 
 template <class Kernel>
 struct SymmetricPressure {
+  static constexpr unsigned bit = term_bits::kSymmetricPressure;
   Kernel kernel;
   static constexpr bool isForceDensity = false;
 

@@ -2,12 +2,15 @@
 // the last axis (y in 2D, z in 3D).
 #pragma once
 
+#include "sph/terms/term_bits.hpp"
+
 #include "sph/particles.hpp"
 
 namespace sph {
 
 template <int D>
 struct UniformGravity {
+  static constexpr unsigned bit = term_bits::kGravity;
   Real g;
 
   Vec<D> acceleration(std::size_t, const Particles<D>&) const {

@@ -1,0 +1,23 @@
+// One bit per physics pass. The model ORs together the bits of the passes it
+// actually ran in its last evaluation (the bits come from the term types
+// instantiated in the pair loop, not from the case's flags), so a test can
+// show that a switched-off term never runs.
+#pragma once
+
+namespace sph::term_bits {
+
+enum : unsigned {
+  kSummationDensity = 1u << 0,
+  kEquationOfState = 1u << 1,
+  kSeedPressure = 1u << 2,
+  kSeedViscosity = 1u << 3,
+  kSymmetricPressure = 1u << 4,
+  kLaplacianViscosity = 1u << 5,
+  kMonaghanViscosity = 1u << 6,
+  kGravity = 1u << 7,
+  kStarAttraction = 1u << 8,
+  kDamping = 1u << 9,
+  kXsph = 1u << 10,
+};
+
+}  // namespace sph::term_bits
