@@ -18,71 +18,66 @@ const char* kTopHelp =
     "Every key of a case file is also a flag that overrides it.";
 
 void declareKeys(CLI::App& run, sph::CaseConfig& c) {
-  auto real = [&](const char* flag, sph::Real& v, const char* help) {
-    run.add_option(flag, v, help)->capture_default_str()->group("Physics and numerics");
+  // One line per key: group, flag, field, "meaning [unit; allowed range]".
+  auto key = [&](const char* group, const char* flag, auto& field, const char* help) {
+    run.add_option(flag, field, help)->capture_default_str()->group(group);
   };
-  run.add_option("--output", c.output, "Output folder [default: runs/<name>]")->group("Run");
-  run.add_option("--name", c.name, "Run name: <name>.pvd, <name>_NNNNN.vtp "
-                 "[letters, digits, _ - .; default: case file name]")->group("Run");
-  run.add_option("--model", c.model, "Physics model [seed_wcsph | wcsph]")->capture_default_str()->group("Run");
-  run.add_option("--dimension", c.dimension, "Spatial dimension [2 or 3]")->capture_default_str()->group("Run");
-  run.add_option("--threads", c.threads, "OpenMP threads [>= 0; 0: all cores]")->capture_default_str()->group("Run");
-  run.add_flag("--progress,!--no-progress", c.progress, "Progress line on a terminal")->capture_default_str()->group("Run");
+  auto flag = [&](const char* group, const char* names, bool& field, const char* help) {
+    run.add_flag(names, field, help)->capture_default_str()->group(group);
+  };
+  const char* runGroup = "Run";
+  key(runGroup, "--output", c.output, "Output folder [default: runs/<name>]");
+  key(runGroup, "--name", c.name, "Run name: <name>.pvd, <name>_NNNNN.vtp [letters, digits, _ - .; default: case file name]");
+  key(runGroup, "--model", c.model, "Physics model [seed_wcsph | wcsph]");
+  key(runGroup, "--dimension", c.dimension, "Spatial dimension [2 or 3]");
+  key(runGroup, "--threads", c.threads, "OpenMP threads [0 to 1024; 0: all cores]");
+  flag(runGroup, "--progress,!--no-progress", c.progress, "Progress line on a terminal");
 
-  real("--h", c.h, "Support radius h [m; > 0]");
-  real("--k", c.k, "EOS stiffness k in p = k (rho - rho0) [> 0]");
-  real("--rho0", c.rho0, "Rest density rho0 [kg/m^D; > 0]");
-  real("--mu", c.mu, "Dynamic viscosity mu [>= 0; 0 switches viscosity off]");
-  real("--g", c.g, "Gravity g along -y (2D) or -z (3D) [m/s^2; 0 switches gravity off]");
-  real("--restitution", c.restitution, "Wall restitution e: normal velocity -> -e times itself [0 to 1]");
-  run.add_flag("--walls,!--no-walls", c.walls, "Damped reflecting walls on the domain box")
-      ->capture_default_str()->group("Physics and numerics");
-  auto choice = [&](const char* flag, std::string& v, const char* help) {
-    run.add_option(flag, v, help)->group("wcsph model");
-  };
-  choice("--kernel", c.kernel, "Kernel [cubic_spline (default) | wendland_c2 | gaussian | muller]");
-  choice("--eos", c.eos, "Equation of state [linear (default) | linear_clamped | tait | polytropic]");
-  choice("--viscosity", c.viscosity, "Viscosity [laplacian (default, uses mu) | monaghan | none]");
-  auto wreal = [&](const char* flag, sph::Real& v, const char* help) {
-    run.add_option(flag, v, help)->capture_default_str()->group("wcsph model");
-  };
-  wreal("--gamma", c.gamma, "Tait exponent [> 0]");
-  wreal("--c0", c.c0, "Tait sound speed [m/s; > 0 with eos = tait]");
-  wreal("--polytropic_index", c.polytropicIndex, "n in p = k rho^(1 + 1/n) [> 0]");
-  wreal("--alpha", c.alpha, "Monaghan viscosity alpha [>= 0]");
-  wreal("--beta", c.beta, "Monaghan viscosity beta [>= 0]");
-  wreal("--xsph", c.xsph, "XSPH epsilon [0 to 1; 0: off]");
-  wreal("--damping", c.damping, "Linear damping nu in a = -nu v [1/s; >= 0; 0: off]");
-  wreal("--star_mass", c.starMass, "Toy star mass M [> 0; 0: no star]");
-  wreal("--star_radius", c.starRadius, "Toy star radius R [m; > 0]");
-  run.add_option("--star_particles", c.starParticles, "Particles per star [>= 1 each]")->group("wcsph model");
-  run.add_option("--star_center", c.starCenter, "Star centres [m; D values per star] (the attraction -lambda x always pulls to the origin)")->group("wcsph model");
-  run.add_option("--star_velocity", c.starVelocity, "Star velocities [m/s; D values per star]")->group("wcsph model");
-  run.add_option("--seed", c.seed, "Random seed of the star particles")->capture_default_str()->group("wcsph model");
-  run.add_option("--integrator", c.integrator, "Time integrator [leap_frog (default) | symplectic_euler | rk4 | euler]")
-      ->group("Physics and numerics");
-  real("--cfl", c.cfl, "Adaptive dt with this CFL factor (dt is then the largest step) [0 to 2; 0: fixed dt]");
-  real("--dt", c.dt, "Time step [s; > 0]");
-  real("--end_time", c.endTime, "Simulated time [s; > 0]");
-  run.add_option("--output_every", c.outputEvery, "Write a snapshot every N steps (and the last) [>= 1]")
-      ->capture_default_str()->group("Physics and numerics");
+  const char* physics = "Physics and numerics";
+  key(physics, "--h", c.h, "Smoothing length h [m; > 0]: the seed scheme's support radius; kernel support "
+                           "is 2h (cubic, Wendland), 3h (Gaussian), h (Mueller)");
+  key(physics, "--k", c.k, "EOS stiffness k: p = k (rho - rho0), or k rho^(1+1/n) polytropic [> 0]");
+  key(physics, "--rho0", c.rho0, "Rest density rho0 [kg/m^D; > 0]");
+  key(physics, "--mu", c.mu, "Dynamic viscosity mu [>= 0; 0 switches viscosity off]");
+  key(physics, "--g", c.g, "Gravity g along -y (2D) or -z (3D) [m/s^2; 0 switches gravity off]");
+  key(physics, "--restitution", c.restitution, "Wall restitution e: normal velocity -> -e times itself [0 to 1]");
+  flag(physics, "--walls,!--no-walls", c.walls, "Damped reflecting walls on the domain box");
+  key(physics, "--integrator", c.integrator, "Time integrator [leap_frog (default) | symplectic_euler | rk4 | euler]");
+  key(physics, "--cfl", c.cfl, "Adaptive dt with this CFL factor (dt is then the largest step) [0 to 2; 0: fixed dt]");
+  key(physics, "--dt", c.dt, "Time step [s; > 0]");
+  key(physics, "--end_time", c.endTime, "Simulated time [s; > 0]");
+  key(physics, "--output_every", c.outputEvery, "Write a snapshot every N steps (and the last) [>= 1]");
 
-  auto vec = [&](const char* flag, std::vector<sph::Real>& v, const char* help) {
-    run.add_option(flag, v, help)->group("Domain and particles");
-  };
-  vec("--domain_min", c.domainMin, "Lower domain corner, walls [m; D values; default 0 0]");
-  vec("--domain_max", c.domainMax, "Upper domain corner, walls [m; D values; > domain_min + 2h; default 1 1]");
-  vec("--block_min", c.blockMin, "Lattice block lower corner [m; D values]");
-  vec("--block_max", c.blockMax, "Lattice block upper corner [m; D values]");
-  vec("--disc_center", c.discCenter, "Lattice disc (2D) or ball (3D) centre [m; D values]");
-  vec("--velocity", c.velocity, "Initial velocity of generated particles [m/s; D values; default 0]");
-  run.add_option("--disc_radius", c.discRadius, "Disc/ball radius [m; > 0]")->group("Domain and particles");
-  run.add_option("--spacing", c.spacing, "Lattice spacing dx of block and disc [m; > 0]")
-      ->group("Domain and particles");
-  run.add_option("--points", c.points, "Explicit particles: x y [z] per point [m]")->group("Domain and particles");
-  run.add_option("--particle_file", c.particleFile,
-                 "Particles from a CSV (header x,y[,z][,vx,vy[,vz]]) or a .vtp written by sph")
-      ->group("Domain and particles");
+  const char* wcsph = "wcsph model";
+  key(wcsph, "--kernel", c.kernel, "Kernel [cubic_spline (default) | wendland_c2 | gaussian | muller]");
+  key(wcsph, "--eos", c.eos, "Equation of state [linear (default) | linear_clamped | tait | polytropic]");
+  key(wcsph, "--viscosity", c.viscosity, "Viscosity [laplacian (default, uses mu) | monaghan | none]");
+  key(wcsph, "--gamma", c.gamma, "Tait exponent [> 0]");
+  key(wcsph, "--c0", c.c0, "Tait sound speed [m/s; > 0 with eos = tait]");
+  key(wcsph, "--polytropic_index", c.polytropicIndex, "n in p = k rho^(1 + 1/n) [> 0]");
+  key(wcsph, "--alpha", c.alpha, "Monaghan viscosity alpha [>= 0]");
+  key(wcsph, "--beta", c.beta, "Monaghan viscosity beta [>= 0]");
+  key(wcsph, "--xsph", c.xsph, "XSPH epsilon [0 to 1; 0: off]");
+  key(wcsph, "--damping", c.damping, "Linear damping nu in a = -nu v [1/s; >= 0; 0: off]");
+  key(wcsph, "--star_mass", c.starMass, "Toy star mass M [> 0; 0: no star]");
+  key(wcsph, "--star_radius", c.starRadius, "Toy star radius R [m; > 0]");
+  key(wcsph, "--star_particles", c.starParticles, "Particles per star [>= 1 each]");
+  key(wcsph, "--star_center", c.starCenter, "Star centres [m; D values per star] (the attraction -lambda x always pulls to the origin)");
+  key(wcsph, "--star_velocity", c.starVelocity, "Star velocities [m/s; D values per star]");
+  key(wcsph, "--seed", c.seed, "Random seed of the star particles");
+
+  const char* particles = "Domain and particles";
+  key(particles, "--domain_min", c.domainMin, "Lower domain corner, walls [m; D values]");
+  key(particles, "--domain_max", c.domainMax, "Upper domain corner, walls [m; D values; > domain_min + 2h]");
+  key(particles, "--block_min", c.blockMin, "Lattice block lower corner [m; D values]");
+  key(particles, "--block_max", c.blockMax, "Lattice block upper corner [m; D values]");
+  key(particles, "--disc_center", c.discCenter, "Lattice disc (2D) or ball (3D) centre [m; D values]");
+  key(particles, "--disc_radius", c.discRadius, "Disc/ball radius [m; > 0]");
+  key(particles, "--spacing", c.spacing, "Lattice spacing dx of block and disc [m; > 0]");
+  key(particles, "--velocity", c.velocity, "Initial velocity of generated particles [m/s; D values; default 0]");
+  key(particles, "--points", c.points, "Explicit particles: x y [z] per point [m]");
+  key(particles, "--particle_file", c.particleFile,
+      "Particles from a CSV (header x,y[,z][,vx,vy[,vz]]) or a .vtp written by sph");
 }
 
 // CLI11's messages, reworded where they would not name the key or file.

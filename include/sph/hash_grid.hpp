@@ -16,9 +16,10 @@
 //
 // build() counting-sorts the particles by bucket; after the caller applies
 // order() to the particle arrays, the particles of bucket b are the contiguous
-// range [cellStart[b], cellStart[b+1]). Two cells may share a bucket: the
-// distance test filters the extra candidates, and forEachNeighbour() visits a
-// bucket shared by two stencil cells only once.
+// range [cellStart[b], cellStart[b+1]). A Stencil lists the particle ranges
+// around one cell (NeighbourList scans them). Two cells may share a bucket:
+// the distance test filters the extra candidates, and a bucket shared by two
+// stencil cells is listed only once.
 #pragma once
 
 #include "sph/types.hpp"
@@ -46,8 +47,6 @@ class HashGrid {
     }
   }
 
-  Real cellSize() const { return cellSize_; }
-
   // Sort particles by bucket. Afterwards order()[k] is the old index of the
   // particle that goes to position k; apply it with Particles::permute().
   void build(const std::vector<Vec<D>>& x) {
@@ -74,15 +73,6 @@ class HashGrid {
 
   const std::vector<std::uint32_t>& order() const { return order_; }
 
-  // Call f(j) for every particle j (in sorted numbering, including i itself)
-  // in the cells around position xi. Callers apply their own distance test.
-  template <class F>
-  void forEachCandidate(const Vec<D>& xi, F&& f) const {
-    Stencil st;
-    stencilAt(cellOf(xi), st);
-    st.forEachCandidate(f);
-  }
-
   // The particle ranges of the (distinct) buckets around one cell. Particles
   // of the same cell share it, so loops over sorted particles compute it once
   // per cell instead of once per particle.
@@ -90,12 +80,6 @@ class HashGrid {
     IVec<D> cell;
     int count = 0;
     std::uint32_t begin[stencilSize], end[stencilSize];
-
-    template <class F>
-    void forEachCandidate(F&& f) const {
-      for (int s = 0; s < count; ++s)
-        for (std::uint32_t j = begin[s]; j < end[s]; ++j) f(j);
-    }
   };
 
   // Update `st` to the stencil of the cell holding x, recomputing only when
@@ -103,17 +87,6 @@ class HashGrid {
   void updateStencil(const Vec<D>& x, Stencil& st) const {
     const IVec<D> c = cellOf(x);
     if (st.count == 0 || c != st.cell) stencilAt(c, st);
-  }
-
-  // Call f(j, rij, r2) for every j with |xi - xj|^2 < radius2, rij = xi - xj.
-  template <class F>
-  void forEachNeighbour(const std::vector<Vec<D>>& x, const Vec<D>& xi,
-                        Real radius2, F&& f) const {
-    forEachCandidate(xi, [&](std::uint32_t j) {
-      const Vec<D> rij = xi - x[j];
-      const Real r2 = rij.squaredNorm();
-      if (r2 < radius2) f(j, rij, r2);
-    });
   }
 
   std::size_t bytesAllocated() const {
@@ -164,13 +137,16 @@ class HashGrid {
   // Lowest cell and strides of the particles' bounding box (one cell of
   // margin on each side, for the stencil).
   void setStrides(const std::vector<Vec<D>>& x) {
-    Vec<D> lo = Vec<D>::Constant(0), hi = Vec<D>::Constant(0);
-    if (!x.empty()) lo = hi = x[0];
-    for (const Vec<D>& xi : x) {
-      lo = lo.cwiseMin(xi);
-      hi = hi.cwiseMax(xi);
-    }
-    const IVec<D> cLo = cellOf(lo), cHi = cellOf(hi);
+    const std::size_t n = x.size();
+    Real lo[D], hi[D];
+    for (int d = 0; d < D; ++d) lo[d] = hi[d] = n ? x[0][d] : 0;
+#pragma omp parallel for schedule(static) reduction(min : lo[:D]) reduction(max : hi[:D]) if (n >= kMinParallelSize)
+    for (std::size_t i = 0; i < n; ++i)
+      for (int d = 0; d < D; ++d) {
+        lo[d] = std::min(lo[d], x[i][d]);
+        hi[d] = std::max(hi[d], x[i][d]);
+      }
+    const IVec<D> cLo = cellOf(Eigen::Map<const Vec<D>>(lo)), cHi = cellOf(Eigen::Map<const Vec<D>>(hi));
     origin_ = cLo - IVec<D>::Ones();
     std::uint64_t stride = 1;
     for (int d = 0; d < D; ++d) {

@@ -65,11 +65,10 @@ class Scene {
   // Sort, optionally scale the masses to rho0, and evaluate rho, p, a at the
   // initial state. Returns a failure if the initial state is not finite.
   std::optional<StateFailure> initialise(bool scaleMass) {
-    if (scaleMass) {
-      sort();
+    sort();
+    if (scaleMass)
       std::visit([&](const auto& m) { scaleMassToRestDensity(P_, neighbours_, m); }, model_);
-    }
-    evaluate();
+    computeDerived();
     return check_(P_);
   }
 
@@ -126,9 +125,13 @@ class Scene {
     neighbours_.build(grid_, P_.x, support());
   }
 
+  void computeDerived() {
+    std::visit([&](const auto& m) { m.computeDerived(P_, neighbours_); }, model_);
+  }
+
   void evaluate() {
     sort();
-    std::visit([&](const auto& m) { m.computeDerived(P_, neighbours_); }, model_);
+    computeDerived();
   }
 
   Particles<D> P_;

@@ -36,7 +36,9 @@ struct TimeStepControl {
     if (adaptive()) {
       const Real h = model.smoothingLength();
       Real v2 = 0, a2 = 0;
-      for (std::size_t i = 0; i < P.size(); ++i) {
+      const std::size_t n = P.size();
+#pragma omp parallel for schedule(static) reduction(max : v2, a2) if (n >= kMinParallelSize)
+      for (std::size_t i = 0; i < n; ++i) {
         v2 = std::max(v2, P.v[i].squaredNorm());
         a2 = std::max(a2, P.a[i].squaredNorm());
       }

@@ -28,6 +28,7 @@
 #include "sph/terms/uniform_gravity.hpp"
 #include "sph/terms/xsph.hpp"
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -150,15 +151,19 @@ class Wcsph {
     return e;
   }
 
-  // Largest sound speed over the particles (for the CFL time step).
+  // Largest sound speed over the particles (for the CFL time step). Every
+  // EOS here has c monotonic in rho, so it is c at the lowest or the highest
+  // density: one reduction instead of a pow() per particle.
   Real maxSoundSpeed(const Particles<D>& P) const {
-    return std::visit(
-        [&](const auto& eos) {
-          Real c = 0;
-          for (Real rho : P.rho) c = std::max(c, eos.soundSpeed(rho));
-          return c;
-        },
-        eos_);
+    Real rhoMin = std::numeric_limits<Real>::infinity(), rhoMax = 0;
+    const std::size_t n = P.size();
+#pragma omp parallel for schedule(static) reduction(min : rhoMin) reduction(max : rhoMax) if (n >= kMinParallelSize)
+    for (std::size_t i = 0; i < n; ++i) {
+      rhoMin = std::min(rhoMin, P.rho[i]);
+      rhoMax = std::max(rhoMax, P.rho[i]);
+    }
+    return std::visit([&](const auto& eos) { return std::max(eos.soundSpeed(rhoMin), eos.soundSpeed(rhoMax)); },
+                      eos_);
   }
 
   // Kinematic viscosity for the viscous time-step limit (0: no limit).
