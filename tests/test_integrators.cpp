@@ -1,7 +1,7 @@
 // Time integrators on problems with exact answers:
 // - free fall (one particle, gravity): leap-frog and RK4 exact to round-off;
 //   symplectic and explicit Euler off by -/+ g t dt / 2, as stated in
-//   ../shared/reference/single_particle_bounce.csv;
+//   tests/reference/single_particle_bounce.csv;
 // - a harmonic oscillator (the toy star's -lambda x on one particle): energy
 //   bounded over 1e5 steps for the symplectic schemes, growing for explicit
 //   Euler; RK4's error falls at fourth order with dt.

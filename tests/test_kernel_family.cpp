@@ -2,7 +2,7 @@
 // poly6/spiky/viscosity set), each in 2D and 3D: normalisation on a lattice,
 // vanishing gradient sums, sign and compact support, gradW and laplacianW
 // against finite differences of the kernels they come from, and the constants
-// in ../shared/reference (computed elsewhere, not by this code).
+// in tests/reference (computed elsewhere, not by this code).
 #include "sph/kernels/kernels.hpp"
 #include "test_support.hpp"
 
@@ -100,7 +100,7 @@ void forLattice(int n, F f) {
   }
 }
 
-// A CSV file from ../shared/reference: '#' lines skipped, the first other line
+// A CSV file from tests/reference: '#' lines skipped, the first other line
 // is the header; each row maps column name -> text.
 using Row = std::map<std::string, std::string>;
 std::vector<Row> readReference(const std::string& name) {

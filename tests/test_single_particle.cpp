@@ -1,7 +1,7 @@
 // One particle (the one_particle case: x = (0.5, 0.5), h = 0.01, g = 9.81,
 // e = 0.5, dt = 1e-4): free fall y = y0 - g t^2/2 to round-off until it
 // reaches the floor clamp at y = h, then a rebound at e times the impact
-// speed. Reference: ../shared/reference/single_particle_bounce.csv (impact
+// speed. Reference: tests/reference/single_particle_bounce.csv (impact
 // times and speeds of the continuous problem).
 #include "test_support.hpp"
 

@@ -1,4 +1,4 @@
-// The toy star against ../shared/reference/toystar_profiles.csv (analytic
+// The toy star against tests/reference/toystar_profiles.csv (analytic
 // equilibrium for M = 2, R = 0.75, k = 0.1, n = 1), and the gate: a relaxed
 // star of 800 particles is within 3% relative L2 of the analytic density
 // inside 0.9 R, in 2D and 3D.

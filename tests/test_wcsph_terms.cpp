@@ -1,5 +1,5 @@
 // The wcsph model's terms on hand-sized systems:
-// - two particles against ../shared/reference/two_particle_examples.csv
+// - two particles against tests/reference/two_particle_examples.csv
 //   (density, pressure and the symmetric pressure acceleration, worked out
 //   analytically by someone else);
 // - momentum conservation with every kernel and both viscosities;
