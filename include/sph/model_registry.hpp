@@ -66,7 +66,9 @@ template <int D>
 Scene<D> makeScene(const CaseConfig& c, InitialState<D> init) {
   const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
   std::optional<DampedReflectingWalls<D>> walls;
-  if (c.walls) walls = DampedReflectingWalls<D>{lo, hi, c.h, c.restitution};
+  if (c.walls)
+    walls = DampedReflectingWalls<D>{lo, hi, c.h, c.restitution,
+                                     c.model == "seed_wcsph" ? ReflectionRule::kSeed : ReflectionRule::kApproaching};
   return Scene<D>(std::move(init.particles), makeModel<D>(c), walls, StateCheck<D>{lo, hi},
                   TimeStepControl{c.dt, c.cfl, init.startTime + c.endTime}, init.startTime,
                   makeIntegrator<D>(c.integrator));

@@ -1,22 +1,29 @@
 // Damped reflecting walls of a box [lo, hi] (the seed scheme's boundary).
 //
 // A particle closer than `distance` (= h) to a wall is put back at that
-// distance, and if it moves into the wall its normal velocity becomes
-// -e times itself (e = restitution in [0, 1]). Both the half-step and the
-// integer-time velocities are reflected, so leap-frog stays consistent.
-// A particle already moving away from the wall keeps its velocity: flipping it
-// would drive it back into the wall.
+// distance and its normal velocity becomes -e times itself (e = restitution
+// in [0, 1]). Both the half-step and the integer-time velocities are
+// reflected, so leap-frog stays consistent. Two rules for which particles
+// are reflected:
+//   kSeed         every clamped particle (the seed document and its C++:
+//                 `if (x < h) { x = h; u = -e u; }`), used by seed_wcsph;
+//   kApproaching  only a particle moving into the wall; one already moving
+//                 away keeps its velocity, since flipping it would drive it
+//                 back into the wall (used by wcsph).
 #pragma once
 
 #include "sph/particles.hpp"
 
 namespace sph {
 
+enum class ReflectionRule { kSeed, kApproaching };
+
 template <int D>
 struct DampedReflectingWalls {
   Vec<D> lo, hi;
   Real distance;
   Real restitution;
+  ReflectionRule rule = ReflectionRule::kApproaching;
 
   void apply(Particles<D>& P) const {
     const std::size_t n = P.size();
@@ -38,8 +45,9 @@ struct DampedReflectingWalls {
  private:
   // outward: -1 for a lower wall, +1 for an upper wall.
   void reflect(Particles<D>& P, std::size_t i, int d, int outward) const {
-    if (!P.vHalf.empty() && P.vHalf[i][d] * outward > 0) P.vHalf[i][d] *= -restitution;
-    if (P.v[i][d] * outward > 0) P.v[i][d] *= -restitution;
+    const bool always = rule == ReflectionRule::kSeed;
+    if (!P.vHalf.empty() && (always || P.vHalf[i][d] * outward > 0)) P.vHalf[i][d] *= -restitution;
+    if (always || P.v[i][d] * outward > 0) P.v[i][d] *= -restitution;
   }
 };
 
