@@ -23,10 +23,10 @@ Scene<2> oneParticle(const std::string& integrator, Real dt, Real g, Real lambda
   Scene<2> s = test::sceneOf<2>(c);
   if (lambda > 0) {
     // Harmonic oscillator: a star attraction without a star.
-    WcsphTerms<2> terms;
-    terms.star = StarAttraction<2>{lambda};
+    WcsphSpec<2> spec{CubicSpline<2>(c.h), LinearEos{c.k, c.rho0}, NoViscosity{}, c.rho0, {}, 0};
+    spec.bodies.star = StarAttraction<2>{lambda};
     Particles<2> P = s.particles();
-    Scene<2> osc(P, Wcsph<2>(CubicSpline<2>(c.h), LinearEos{c.k, c.rho0}, NoViscosity{}, c.rho0, terms),
+    Scene<2> osc(P, makeWcsph<2>(spec),
                  std::nullopt, StateCheck<2>{Vec<2>::Constant(-1e6), Vec<2>::Constant(1e6)},
                  TimeStepControl{dt}, 0, makeIntegrator<2>(integrator));
     BOOST_REQUIRE(!osc.initialise(false));

@@ -34,7 +34,7 @@ Scene<D> makeScene(const std::vector<Vec<D>>& x, const std::vector<Vec<D>>& v,
   const Vec<D> lo = Vec<D>::Constant(walls ? 0 : -10), hi = Vec<D>::Constant(walls ? 1 : 10);
   std::optional<DampedReflectingWalls<D>> w;
   if (walls) w = DampedReflectingWalls<D>{lo, hi, prm.h, restitution, ReflectionRule::kSeed};
-  Scene<D> scene(std::move(P), SeedWcsph<D>(prm), w, StateCheck<D>{lo, hi}, TimeStepControl{dt});
+  Scene<D> scene(std::move(P), makeSeedWcsph<D>(prm), w, StateCheck<D>{lo, hi}, TimeStepControl{dt});
   BOOST_REQUIRE(!scene.initialise(mass <= 0));
   return scene;
 }

@@ -20,6 +20,11 @@
 // around one cell (NeighbourList scans them). Two cells may share a bucket:
 // the distance test filters the extra candidates, and a bucket shared by two
 // stencil cells is listed only once.
+//
+// Kinds: when the particles from index `fluidCount` on are walls, walls get
+// a second table of buckets after the fluid's (bucket + T), so the sort keeps
+// every wall after every fluid particle, and a Stencil lists the fluid
+// ranges and the wall ranges around a cell separately.
 #pragma once
 
 #include "sph/types.hpp"
@@ -49,25 +54,29 @@ class HashGrid {
 
   // Sort particles by bucket. Afterwards order()[k] is the old index of the
   // particle that goes to position k; apply it with Particles::permute().
-  void build(const std::vector<Vec<D>>& x) {
+  // Particles [fluidCount, n) are walls (none by default).
+  void build(const std::vector<Vec<D>>& x, std::size_t fluidCount = SIZE_MAX) {
     const std::size_t n = x.size();
+    fluidCount = std::min(fluidCount, n);
     const std::size_t tableSize = tableSizeFor(n);
-    if (cellStart_.size() != tableSize + 1) {
-      cellStart_.assign(tableSize + 1, 0);
-      mask_ = tableSize - 1;
-    }
+    const std::size_t tables = fluidCount < n ? 2 : 1;
+    if (cellStart_.size() != tables * tableSize + 1) cellStart_.assign(tables * tableSize + 1, 0);
+    mask_ = tableSize - 1;
+    wallOffset_ = tables == 2 ? static_cast<std::uint32_t>(tableSize) : 0;
     bucket_.resize(n);
     order_.resize(n);
     setStrides(x);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-    for (std::size_t i = 0; i < n; ++i) bucket_[i] = bucketOf(cellOf(x[i]));
+    for (std::size_t i = 0; i < n; ++i)
+      bucket_[i] = bucketOf(cellOf(x[i])) + (i < fluidCount ? 0 : wallOffset_);
 
     // Counting sort, stable: count, inclusive prefix sum (cellStart_[b] = end
     // of bucket b), then scatter backwards so cellStart_[b] becomes its start.
+    const std::size_t buckets = cellStart_.size() - 1;
     std::fill(cellStart_.begin(), cellStart_.end(), 0u);
     for (std::size_t i = 0; i < n; ++i) ++cellStart_[bucket_[i]];
-    for (std::size_t b = 1; b < tableSize; ++b) cellStart_[b] += cellStart_[b - 1];
-    cellStart_[tableSize] = static_cast<std::uint32_t>(n);
+    for (std::size_t b = 1; b < buckets; ++b) cellStart_[b] += cellStart_[b - 1];
+    cellStart_[buckets] = static_cast<std::uint32_t>(n);
     for (std::size_t i = n; i-- > 0;) order_[--cellStart_[bucket_[i]]] = static_cast<std::uint32_t>(i);
   }
 
@@ -78,15 +87,17 @@ class HashGrid {
   // per cell instead of once per particle.
   struct Stencil {
     IVec<D> cell;
-    int count = 0;
+    bool valid = false;
+    int count = 0, wallCount = 0;  // fluid ranges, then wall ranges
     std::uint32_t begin[stencilSize], end[stencilSize];
+    std::uint32_t wallBegin[stencilSize], wallEnd[stencilSize];
   };
 
   // Update `st` to the stencil of the cell holding x, recomputing only when
   // the cell differs from the one it already describes.
   void updateStencil(const Vec<D>& x, Stencil& st) const {
     const IVec<D> c = cellOf(x);
-    if (st.count == 0 || c != st.cell) stencilAt(c, st);
+    if (!st.valid || c != st.cell) stencilAt(c, st);
   }
 
   std::size_t bytesAllocated() const {
@@ -114,24 +125,36 @@ class HashGrid {
 
   void stencilAt(const IVec<D>& c, Stencil& st) const {
     st.cell = c;
-    st.count = 0;
+    st.valid = true;
     std::uint32_t seen[stencilSize];
     int nSeen = 0;
     for (const IVec<D>& offset : stencil_) {
       const std::uint32_t b = bucketOf(c + offset);
       bool dup = false;
       for (int k = 0; k < nSeen; ++k) dup |= seen[k] == b;
-      seen[nSeen++] = b;
-      if (dup || cellStart_[b] == cellStart_[b + 1]) continue;
-      // A bucket that directly follows the previous range extends it.
-      if (st.count > 0 && st.end[st.count - 1] == cellStart_[b]) {
-        st.end[st.count - 1] = cellStart_[b + 1];
+      if (!dup) seen[nSeen++] = b;
+    }
+    st.count = ranges(seen, nSeen, 0, st.begin, st.end);
+    st.wallCount = wallOffset_ ? ranges(seen, nSeen, wallOffset_, st.wallBegin, st.wallEnd) : 0;
+  }
+
+  // The non-empty particle ranges of buckets b + offset, merged where one
+  // directly follows the previous one. Returns their number.
+  int ranges(const std::uint32_t* buckets, int nBuckets, std::uint32_t offset, std::uint32_t* begin,
+             std::uint32_t* end) const {
+    int count = 0;
+    for (int k = 0; k < nBuckets; ++k) {
+      const std::uint32_t b = buckets[k] + offset;
+      if (cellStart_[b] == cellStart_[b + 1]) continue;
+      if (count > 0 && end[count - 1] == cellStart_[b]) {
+        end[count - 1] = cellStart_[b + 1];
         continue;
       }
-      st.begin[st.count] = cellStart_[b];
-      st.end[st.count] = cellStart_[b + 1];
-      ++st.count;
+      begin[count] = cellStart_[b];
+      end[count] = cellStart_[b + 1];
+      ++count;
     }
+    return count;
   }
 
   // Lowest cell and strides of the particles' bounding box (one cell of
@@ -167,6 +190,7 @@ class HashGrid {
   IVec<D> origin_ = IVec<D>::Zero();
   std::uint64_t stride_[D] = {};
   std::uint64_t mask_ = 0;
+  std::uint32_t wallOffset_ = 0;  // first wall bucket (0: no walls)
   std::vector<std::uint32_t> cellStart_;  // bucket b: [cellStart_[b], cellStart_[b+1])
   std::vector<std::uint32_t> bucket_;
   std::vector<std::uint32_t> order_;

@@ -43,13 +43,12 @@ inline Real starLambda(const CaseConfig& c) {
 
 template <int D>
 Model<D> makeModel(const CaseConfig& c) {
-  if (c.model == "seed_wcsph") return SeedWcsph<D>(SeedWcsphParameters{c.h, c.k, c.rho0, c.mu, c.g});
-  WcsphTerms<D> terms;
-  if (c.g != 0) terms.gravity = UniformGravity<D>{c.g};
-  if (c.starMass > 0) terms.star = StarAttraction<D>{starLambda(c)};
-  if (c.damping > 0) terms.damping = LinearDamping<D>{c.damping};
-  terms.xsphEpsilon = c.xsph;
-  return Wcsph<D>(makeKernel<D>(c.kernel, c.h), makeEos(c), makeViscosity(c), c.rho0, terms);
+  if (c.model == "seed_wcsph") return makeSeedWcsph<D>(SeedWcsphParameters{c.h, c.k, c.rho0, c.mu, c.g});
+  WcsphSpec<D> spec{makeKernel<D>(c.kernel, c.h), makeEos(c), makeViscosity(c), c.rho0, {}, c.xsph};
+  if (c.g != 0) spec.bodies.gravity = UniformGravity<D>{c.g};
+  if (c.starMass > 0) spec.bodies.star = StarAttraction<D>{starLambda(c)};
+  if (c.damping > 0) spec.bodies.damping = LinearDamping<D>{c.damping};
+  return makeWcsph<D>(spec);
 }
 
 template <int D>

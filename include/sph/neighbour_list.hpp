@@ -8,6 +8,11 @@
 // their capacity between steps, so a steady run does not allocate.
 // Each particle's neighbours keep the order of the grid scan, so results do
 // not depend on the number of threads.
+//
+// With walls (particles from fluidCount on), a fluid particle lists its fluid
+// neighbours, then its wall neighbours (forEachFluid / forEachWall visit each
+// run); a wall particle lists only its fluid neighbours: no method here
+// couples two wall particles.
 #pragma once
 
 #include "sph/hash_grid.hpp"
@@ -22,8 +27,13 @@ namespace sph {
 template <int D>
 class NeighbourList {
  public:
-  void build(const HashGrid<D>& grid, const std::vector<Vec<D>>& x, Real radius) {
+  void build(const HashGrid<D>& grid, const std::vector<Vec<D>>& x, Real radius,
+             std::size_t fluidCount = SIZE_MAX) {
     const std::size_t n = x.size();
+    fluidCount = std::min(fluidCount, n);
+    const bool walls = fluidCount < n;
+    if (walls) wallBegin_.resize(n);
+    else std::vector<std::uint32_t>().swap(wallBegin_);
     const Real radius2 = radius * radius;
     const int threads = omp_get_max_threads();
     if (static_cast<int>(chunks_.size()) < threads) {
@@ -45,15 +55,11 @@ class NeighbourList {
         begin_[i] = static_cast<std::uint32_t>(used);
         const Vec<D> xi = x[i];
         grid.updateStencil(xi, stencil);
-        for (int s = 0; s < stencil.count; ++s) {
-          const std::uint32_t b = stencil.begin[s], e = stencil.end[s];
-          if (used + (e - b) > list.size()) list.resize(used + (e - b) + used / 4 + 64);
-          // Branch-free append: write always, advance only for a neighbour.
-          for (std::uint32_t j = b; j < e; ++j) {
-            list[used] = j;
-            used += ((xi - x[j]).squaredNorm() < radius2) & (j != i);
-          }
-        }
+        used = scan(list, used, i, xi, x, radius2, stencil.begin, stencil.end, stencil.count);
+        if (!walls) continue;
+        wallBegin_[i] = static_cast<std::uint32_t>(used);
+        if (i < fluidCount)
+          used = scan(list, used, i, xi, x, radius2, stencil.wallBegin, stencil.wallEnd, stencil.wallCount);
       }
       used_[t] = used;
       chunkStart_[t] = lo;
@@ -63,15 +69,39 @@ class NeighbourList {
     chunkStart_[usedChunks_] = n;
   }
 
-  // Call f(j) for every neighbour j of particle i.
+  // Append to list[used...] the neighbours of xi in the particle ranges
+  // [begin[s], end[s]); returns the new fill. Branch-free: write always,
+  // advance only for a neighbour.
+  static std::size_t scan(std::vector<std::uint32_t>& list, std::size_t used, std::size_t i, const Vec<D>& xi,
+                          const std::vector<Vec<D>>& x, Real radius2, const std::uint32_t* begin,
+                          const std::uint32_t* end, int ranges) {
+    for (int s = 0; s < ranges; ++s) {
+      const std::uint32_t b = begin[s], e = end[s];
+      if (used + (e - b) > list.size()) list.resize(used + (e - b) + used / 4 + 64);
+      std::uint32_t* out = list.data();
+      for (std::uint32_t j = b; j < e; ++j) {
+        out[used] = j;
+        used += ((xi - x[j]).squaredNorm() < radius2) & (j != i);
+      }
+    }
+    return used;
+  }
+
+  // Call f(j) for every neighbour j of particle i (fluid ones first).
   template <class F>
   void forEach(std::size_t i, F&& f) const {
-    std::size_t t = 0;
-    while (i >= chunkStart_[t + 1]) ++t;
-    const std::vector<std::uint32_t>& list = chunks_[t];
-    const std::uint32_t end =
-        i + 1 < chunkStart_[t + 1] ? begin_[i + 1] : static_cast<std::uint32_t>(used_[t]);
-    for (std::uint32_t k = begin_[i]; k < end; ++k) f(list[k]);
+    const Run r = run(i);
+    for (std::uint32_t k = r.begin; k < r.end; ++k) f(r.list[k]);
+  }
+
+  // Call f(j) for the fluid neighbours of i, then g(j) for its wall
+  // neighbours (none without walls).
+  template <class F, class G>
+  void forEachByKind(std::size_t i, F&& f, G&& g) const {
+    const Run r = run(i);
+    const std::uint32_t split = wallBegin_.empty() ? r.end : wallBegin_[i];
+    for (std::uint32_t k = r.begin; k < split; ++k) f(r.list[k]);
+    for (std::uint32_t k = split; k < r.end; ++k) g(r.list[k]);
   }
 
   std::size_t pairCount() const {
@@ -81,15 +111,30 @@ class NeighbourList {
   }
 
   std::size_t bytesAllocated() const {
-    std::size_t b = begin_.capacity() * sizeof(std::uint32_t) + chunkStart_.capacity() * sizeof(std::size_t);
+    std::size_t b = (begin_.capacity() + wallBegin_.capacity()) * sizeof(std::uint32_t) +
+                    chunkStart_.capacity() * sizeof(std::size_t);
     for (const auto& c : chunks_) b += c.capacity() * sizeof(std::uint32_t);
     return b;
   }
 
  private:
+  struct Run {
+    const std::uint32_t* list;
+    std::uint32_t begin, end;
+  };
+  [[gnu::always_inline]] Run run(std::size_t i) const {
+    std::size_t t = 0;
+    while (i >= chunkStart_[t + 1]) ++t;
+    const std::vector<std::uint32_t>& list = chunks_[t];
+    const std::uint32_t end =
+        i + 1 < chunkStart_[t + 1] ? begin_[i + 1] : static_cast<std::uint32_t>(used_[t]);
+    return {list.data(), begin_[i], end};
+  }
+
   std::vector<std::vector<std::uint32_t>> chunks_;  // one flat buffer per thread
   std::vector<std::size_t> used_;                   // entries in use per chunk
   std::vector<std::uint32_t> begin_;                // start of i's run in its chunk
+  std::vector<std::uint32_t> wallBegin_;            // start of i's wall neighbours (walls only)
   std::vector<std::size_t> chunkStart_;             // first particle of each chunk
   std::size_t usedChunks_ = 0;
 };

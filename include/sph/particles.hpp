@@ -1,60 +1,136 @@
 // Particles<D>: the particle state as a structure of arrays.
 //
-// One contiguous array per field, indexed by particle. The core fields (x, v,
-// a, rho, p, m, id) always exist; the optional ones are allocated only when
-// the model or the integrator of a scene asks for them (FieldNeeds), so a
-// scene pays no memory for what it does not use.
+// One contiguous array per field of the field table (fields.hpp), indexed by
+// particle. The core fields always exist; the others are allocated only when
+// the model or the integrator of a scene asks for them, so a scene pays no
+// memory for what it does not use.
 //
-// State fields (x, v, m, id, and the integrator's own arrays vHalf, x0, v0,
-// dx, dv) define the particles; derived fields (a, rho, p, c, vXsph) are
-// recomputed from them after every neighbour sort. permute() therefore
-// reorders the state fields only: derived fields are stale after a permute
-// until the model recomputes them. The scratch buffers are kept between
-// calls, so the step loop never allocates.
+// Kinds: particles [0, fluidCount()) are fluid, the rest are walls (the
+// kind field, allocated only when there are walls, says which is which and
+// the neighbour grid keeps walls after the fluid through every re-sort).
+//
+// permute() reorders the state and stage fields in one parallel pass (each
+// has a shadow buffer of its own, kept between calls, so the step loop never
+// allocates). Rates and derived fields are stale after it until the model
+// evaluates again.
 #pragma once
 
+#include "sph/fields.hpp"
 #include "sph/types.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace sph {
 
-// Optional per-particle arrays, requested by a model or an integrator.
-struct FieldNeeds {
-  bool halfStepVelocity = false;  // leap-frog: vHalf
-  bool soundSpeed = false;        // Monaghan viscosity, adaptive dt: c
-  bool xsph = false;              // XSPH: vXsph
-  bool rungeKutta = false;        // RK4: x0, v0, dx, dv
+// The arrays themselves, one per row of the field table.
+template <int D>
+struct FieldArrays {
+  std::vector<Vec<D>> x, v, a;
+  std::vector<Real> rho, drho, p, m;
+  std::vector<std::int64_t> id;
+  std::vector<std::uint8_t> kind;
+  std::vector<Vec<D>> vHalf;
+  std::vector<Real> rhoHalf;
+  std::vector<Real> c;
+  std::vector<Vec<D>> vXsph, vWall;
+  std::vector<Vec<D>> x0, v0;
+  std::vector<Real> rho0;
+  std::vector<Vec<D>> dx, dv;
+  std::vector<Real> drhoSum;
 
-  FieldNeeds operator|(const FieldNeeds& o) const {
-    return {halfStepVelocity || o.halfStepVelocity, soundSpeed || o.soundSpeed, xsph || o.xsph,
-            rungeKutta || o.rungeKutta};
+  // f(info, field of s0, field of s1, ...) for every row of the table, in
+  // table order: the one place that lists the members.
+  template <class F, class... S>
+  static void zip(F&& f, S&... s) {
+    f(kFieldTable[kFieldX], s.x...);
+    f(kFieldTable[kFieldV], s.v...);
+    f(kFieldTable[kFieldA], s.a...);
+    f(kFieldTable[kFieldRho], s.rho...);
+    f(kFieldTable[kFieldDrho], s.drho...);
+    f(kFieldTable[kFieldP], s.p...);
+    f(kFieldTable[kFieldM], s.m...);
+    f(kFieldTable[kFieldId], s.id...);
+    f(kFieldTable[kFieldKind], s.kind...);
+    f(kFieldTable[kFieldVHalf], s.vHalf...);
+    f(kFieldTable[kFieldRhoHalf], s.rhoHalf...);
+    f(kFieldTable[kFieldC], s.c...);
+    f(kFieldTable[kFieldVXsph], s.vXsph...);
+    f(kFieldTable[kFieldVWall], s.vWall...);
+    f(kFieldTable[kFieldX0], s.x0...);
+    f(kFieldTable[kFieldV0], s.v0...);
+    f(kFieldTable[kFieldRho0], s.rho0...);
+    f(kFieldTable[kFieldDx], s.dx...);
+    f(kFieldTable[kFieldDv], s.dv...);
+    f(kFieldTable[kFieldDrhoSum], s.drhoSum...);
+  }
+
+  // Call f(info, array) for every field.
+  template <class F>
+  void forEachField(F&& f) {
+    zip(f, *this);
+  }
+  template <class F>
+  void forEachField(F&& f) const {
+    zip(f, *this);
+  }
+
+  // Size exactly the fields in `fields` to n (new entries zero), release the
+  // others and any spare capacity.
+  void sizeFields(FieldSet fields, std::size_t n) {
+    forEachField([&](const FieldInfo& info, auto& field) {
+      using Field = std::decay_t<decltype(field)>;
+      if (((fields >> info.id) & 1u) == 0) Field().swap(field);
+      else field.resize(n, zero<typename Field::value_type>());
+      field.shrink_to_fit();
+    });
+  }
+
+  std::size_t bytesAllocated() const {
+    std::size_t b = 0;
+    forEachField([&](const FieldInfo&, const auto& field) {
+      b += field.capacity() * sizeof(typename std::decay_t<decltype(field)>::value_type);
+    });
+    return b;
+  }
+
+  template <class T>
+  static T zero() {
+    if constexpr (std::is_same_v<T, Vec<D>>) return Vec<D>::Zero();
+    else return T(0);
   }
 };
 
+static_assert([] {
+  for (unsigned f = 0; f < kFieldCount; ++f)
+    if (kFieldTable[f].id != f) return false;
+  return true;
+}(), "kFieldTable rows must be in FieldId order");
+
 template <int D>
-struct Particles {
-  // core
-  std::vector<Vec<D>> x;         // position [m]
-  std::vector<Vec<D>> v;         // velocity at integer time [m/s]
-  std::vector<Vec<D>> a;         // acceleration [m/s^2]
-  std::vector<Real> rho;         // density [kg/m^D]
-  std::vector<Real> p;           // pressure
-  std::vector<Real> m;           // mass [kg]
-  std::vector<std::int64_t> id;  // stable identity, kept through re-sorts
-  // optional (empty unless a FieldNeeds flag asks for them)
-  std::vector<Vec<D>> vHalf;     // leap-frog half-step velocity
-  std::vector<Real> c;           // sound speed
-  std::vector<Vec<D>> vXsph;     // XSPH velocity correction, added to the drift
-  std::vector<Vec<D>> x0, v0;    // RK4: state at the start of the step
-  std::vector<Vec<D>> dx, dv;    // RK4: weighted sums of the stage derivatives
+struct Particles : FieldArrays<D> {
+  using FieldArrays<D>::x;
+  using FieldArrays<D>::v;
+  using FieldArrays<D>::a;
+  using FieldArrays<D>::rho;
+  using FieldArrays<D>::p;
+  using FieldArrays<D>::m;
+  using FieldArrays<D>::id;
+  using FieldArrays<D>::kind;
+  using FieldArrays<D>::vXsph;
 
   std::size_t size() const { return x.size(); }
+  // Fluid particles are [0, fluidCount()), walls [fluidCount(), size()).
+  std::size_t fluidCount() const { return fluid_; }
+  bool hasWalls() const { return fluid_ < size(); }
+  FieldSet allocated() const { return allocated_; }
+  bool has(FieldId f) const { return (allocated_ >> f) & 1u; }
 
-  // Size the core fields for n particles; x, v, m, id are expected to be set.
-  void resize(std::size_t n) {
+  // Size the core fields for n particles (x, v, m, id are expected to be set
+  // already), with walls from index `fluidCount` on (all fluid by default).
+  void resize(std::size_t n, std::size_t fluidCount = SIZE_MAX) {
     x.resize(n);
     v.resize(n, Vec<D>::Zero());
     a.resize(n, Vec<D>::Zero());
@@ -62,6 +138,8 @@ struct Particles {
     p.resize(n, 0);
     m.resize(n, 0);
     id.resize(n, 0);
+    fluid_ = std::min(fluidCount, n);
+    allocate(allocated_);
   }
 
   // The velocity particle i drifts with when its velocity is `velocity`:
@@ -70,58 +148,56 @@ struct Particles {
     return vXsph.empty() ? velocity : Vec<D>(velocity + vXsph[i]);
   }
 
-  // Allocate exactly the optional fields asked for; release the others.
-  void allocate(const FieldNeeds& needs) {
+  // Allocate exactly the core fields and the optional ones in `wanted` (the
+  // kind field too when there are walls), release the others, and give the
+  // permuted fields their shadow buffers.
+  void allocate(FieldSet wanted) {
+    wanted |= kCoreFields;
+    if (hasWalls()) wanted |= fieldBit(kFieldKind);
     const std::size_t n = size();
-    const Vec<D> zero = Vec<D>::Zero();
-    sizeIf(vHalf, needs.halfStepVelocity, n, zero);
-    sizeIf(c, needs.soundSpeed, n, Real(0));
-    sizeIf(vXsph, needs.xsph, n, zero);
-    for (auto* f : {&x0, &v0, &dx, &dv}) sizeIf(*f, needs.rungeKutta, n, zero);
+    this->sizeFields(wanted, n);
+    if (hasWalls())
+      for (std::size_t i = 0; i < n; ++i) kind[i] = i < fluid_ ? kFluid : kWall;
+    allocated_ = wanted;
+    permuted_ = 0;
+    for (const FieldInfo& info : kFieldTable)
+      if (isPermuted(info.role) && ((wanted >> info.id) & 1u)) permuted_ |= fieldBit(info.id);
+    // Density is a state variable only when it is integrated (a density
+    // rate exists); summation density recomputes it after every sort.
+    if (((wanted >> kFieldDrho) & 1u) == 0) permuted_ &= ~fieldBit(kFieldRho);
+    shadow_.sizeFields(permuted_, n);
   }
 
-  void shrinkToFit() {
-    for (auto* f : {&x, &v, &a, &vHalf, &vXsph, &x0, &v0, &dx, &dv}) f->shrink_to_fit();
-    for (auto* f : {&rho, &p, &m, &c}) f->shrink_to_fit();
-    id.shrink_to_fit();
-  }
-
-  // Reorder the state fields so that new particle k is old particle order[k].
+  // Reorder the state and stage fields so that new particle k is old
+  // particle order[k]: one parallel region, one gather loop per field with
+  // no barrier between them. The grid sorts walls after the fluid, so the
+  // fluid count does not change.
   void permute(const std::vector<std::uint32_t>& order) {
-    for (auto* f : {&x, &v, &vHalf, &x0, &v0, &dx, &dv}) permuteField(*f, order, scratchVec_);
-    permuteField(m, order, scratchReal_);
-    permuteField(id, order, scratchId_);
+    const std::size_t n = size();
+    const FieldSet permuted = permuted_;
+#pragma omp parallel if (n >= kMinParallelSize)
+    FieldArrays<D>::zip(
+        [&](const FieldInfo& info, auto& field, auto& shadow) {
+          if (((permuted >> info.id) & 1u) == 0) return;
+#pragma omp for schedule(static) nowait
+          for (std::size_t k = 0; k < n; ++k) shadow[k] = field[order[k]];
+        },
+        *this, shadow_);
+    FieldArrays<D>::zip(
+        [&](const FieldInfo& info, auto& field, auto& shadow) {
+          if ((permuted >> info.id) & 1u) field.swap(shadow);
+        },
+        *this, shadow_);
   }
 
-  std::size_t bytesAllocated() const {
-    std::size_t b = 0;
-    for (const auto* f : {&x, &v, &a, &vHalf, &vXsph, &x0, &v0, &dx, &dv, &scratchVec_})
-      b += f->capacity() * sizeof(Vec<D>);
-    for (const auto* f : {&rho, &p, &m, &c, &scratchReal_}) b += f->capacity() * sizeof(Real);
-    return b + (id.capacity() + scratchId_.capacity()) * sizeof(std::int64_t);
-  }
+  // Every array of the particles, shadow buffers included [bytes].
+  std::size_t bytesAllocated() const { return FieldArrays<D>::bytesAllocated() + shadow_.bytesAllocated(); }
 
  private:
-  template <class T>
-  static void sizeIf(std::vector<T>& f, bool wanted, std::size_t n, const T& zero) {
-    if (wanted) f.resize(n, zero);
-    else std::vector<T>().swap(f);
-  }
-
-  template <class T>
-  static void permuteField(std::vector<T>& field, const std::vector<std::uint32_t>& order,
-                           std::vector<T>& scratch) {
-    if (field.empty()) return;
-    scratch.resize(field.size());
-    const std::size_t n = field.size();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-    for (std::size_t k = 0; k < n; ++k) scratch[k] = field[order[k]];
-    field.swap(scratch);
-  }
-
-  std::vector<Vec<D>> scratchVec_;
-  std::vector<Real> scratchReal_;
-  std::vector<std::int64_t> scratchId_;
+  std::size_t fluid_ = 0;
+  FieldSet allocated_ = 0;
+  FieldSet permuted_ = 0;
+  FieldArrays<D> shadow_;
 };
 
 }  // namespace sph

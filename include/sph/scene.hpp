@@ -1,12 +1,13 @@
 // Scene<D>: particles, neighbour grid, model, walls, integrator and time-step
 // control, advanced one step at a time.
 //
-// evaluate() = sort by cell (permuting the state fields), rebuild the grid
-// and the neighbour list, then the model's rho, p, a at the current state.
-// One step = the integrator's update with as many evaluate() calls as it
-// needs (1 for leap-frog and the Euler schemes, 4 for RK4), the walls after
-// each full position update, then the state check.
-// Model and integrator are variants resolved once per step (std::visit).
+// evaluate() = sort by cell (permuting the state and stage fields), rebuild
+// the grid and the neighbour list, then the model's passes at the current
+// state. One step = the integrator's advance (as many evaluate() calls as it
+// needs: 1 for leap-frog and the Euler schemes, 4 for RK4; the walls act on
+// each particle right after its position update), then one loop that
+// finishes every particle, checks the state and reduces what the next time
+// step needs. The integrator is a variant resolved once per step.
 #pragma once
 
 #include "sph/boundaries/damped_reflecting_walls.hpp"
@@ -35,9 +36,6 @@ struct Energy {
 };
 
 template <int D>
-using Model = std::variant<SeedWcsph<D>, Wcsph<D>>;
-
-template <int D>
 using Integrator = std::variant<LeapFrog<D>, SymplecticEuler<D>, ExplicitEuler<D>, RungeKutta4<D>>;
 
 template <int D>
@@ -52,48 +50,48 @@ class Scene {
         walls_(std::move(walls)),
         check_(std::move(check)),
         timeStep_(timeStep),
-        grid_(support()),
+        grid_(model_.support()),
         startTime_(startTime),
         time_(startTime) {
-    P_.resize(P_.size());
-    const FieldNeeds modelNeeds = std::visit([](const auto& m) { return m.needs(); }, model_);
-    const FieldNeeds integratorNeeds = std::visit([](const auto& i) { return i.needs(); }, integrator_);
-    P_.allocate(modelNeeds | integratorNeeds);
-    P_.shrinkToFit();
+    P_.resize(P_.size(), P_.fluidCount() ? P_.fluidCount() : SIZE_MAX);
+    const bool density = (model_.needs() & fieldBit(kFieldDrho)) != 0;
+    const FieldSet integratorNeeds = std::visit([&](const auto& i) { return i.needs(density); }, integrator_);
+    P_.allocate(model_.needs() | integratorNeeds);
   }
 
-  // Sort, optionally scale the masses to rho0, and evaluate rho, p, a at the
+  // Sort, optionally scale the masses to rho0, and evaluate the model at the
   // initial state. Returns a failure if the initial state is not finite.
   std::optional<StateFailure> initialise(bool scaleMass) {
     sort();
-    if (scaleMass)
-      std::visit([&](const auto& m) { scaleMassToRestDensity(P_, neighbours_, m); }, model_);
-    computeDerived();
-    return check_(P_);
+    if (scaleMass) scaleMassToRestDensity(P_, neighbours_, model_);
+    model_.evaluate(P_, neighbours_, StepContext{step_, time_, 0});
+    return finishStep([](std::size_t) {});
   }
 
   std::optional<StateFailure> step() {
-    const TimeStepChoice choice =
-        std::visit([&](const auto& m) { return timeStep_.next(P_, m, time_); }, model_);
+    const TimeStepChoice choice = timeStep_.next(extremes_, model_, time_);
     lastStep_ = choice;
+    context_ = StepContext{step_ + 1, time_ + choice.dt, choice.dt};
+    auto constrain = [&](Particles<D>& P, std::size_t i) {
+      if (walls_) (*walls_)(P, i);
+    };
+    std::optional<StateFailure> failure;
     std::visit(
         [&](const auto& integrator) {
-          integrator.step(P_, choice.dt, [&] { evaluate(); },
-                          [&] {
-                            if (walls_) walls_->apply(P_);
-                          });
+          integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain);
+          failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
         },
         integrator_);
     ++step_;
     // A fixed dt keeps time = start + n dt exact; adaptive steps add up.
     time_ = timeStep_.adaptive() ? time_ + choice.dt : startTime_ + static_cast<Real>(step_) * choice.dt;
-    return check_(P_);
+    return failure;
   }
 
   Energy energy() const {
     Energy e;
-    for (std::size_t i = 0; i < P_.size(); ++i) e.kinetic += 0.5 * P_.m[i] * P_.v[i].squaredNorm();
-    e.potential = std::visit([&](const auto& m) { return m.potentialEnergy(P_); }, model_);
+    for (std::size_t i = 0; i < P_.fluidCount(); ++i) e.kinetic += 0.5 * P_.m[i] * P_.v[i].squaredNorm();
+    e.potential = model_.potentialEnergy(P_);
     return e;
   }
 
@@ -105,9 +103,7 @@ class Scene {
   long stepIndex() const { return step_; }
   // dt and criterion of the last step (before the first: the fixed dt).
   const TimeStepChoice& lastTimeStep() const { return lastStep_; }
-  Real support() const {
-    return std::visit([](const auto& m) { return m.support(); }, model_);
-  }
+  Real support() const { return model_.support(); }
 
   // Mean number of neighbours per particle (j != i inside the support).
   Real meanNeighbours() const {
@@ -120,18 +116,47 @@ class Scene {
 
  private:
   void sort() {
-    grid_.build(P_.x);
+    grid_.build(P_.x, P_.fluidCount());
     P_.permute(grid_.order());
-    neighbours_.build(grid_, P_.x, support());
-  }
-
-  void computeDerived() {
-    std::visit([&](const auto& m) { m.computeDerived(P_, neighbours_); }, model_);
+    neighbours_.build(grid_, P_.x, model_.support(), P_.fluidCount());
   }
 
   void evaluate() {
     sort();
-    computeDerived();
+    model_.evaluate(P_, neighbours_, context_);
+  }
+
+  // One loop over the particles: finish(i), the state check, and (adaptive
+  // time steps only) the extremes the next time step needs. Returns the
+  // first failure.
+  template <class Finish>
+  std::optional<StateFailure> finishStep(Finish&& finish) {
+    return timeStep_.adaptive() ? finishStep<true>(finish) : finishStep<false>(finish);
+  }
+
+  template <bool kExtremes, class Finish>
+  std::optional<StateFailure> finishStep(Finish& finish) {
+    const std::size_t n = P_.size(), nFluid = P_.fluidCount();
+    const bool density = !P_.drho.empty();
+    std::size_t first = n;
+    Real v2 = 0, a2 = 0, rhoMin = std::numeric_limits<Real>::infinity(), rhoMax = 0;
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize) \
+    reduction(min : first, rhoMin) reduction(max : v2, a2, rhoMax)
+    for (std::size_t i = 0; i < n; ++i) {
+      finish(i);
+      if (!check_.ok(P_, i) && i < first) first = i;
+      if constexpr (!kExtremes) continue;
+      if (i < nFluid || density) {
+        rhoMin = std::min(rhoMin, P_.rho[i]);
+        rhoMax = std::max(rhoMax, P_.rho[i]);
+      }
+      if (i >= nFluid) continue;
+      v2 = std::max(v2, P_.v[i].squaredNorm());
+      a2 = std::max(a2, P_.a[i].squaredNorm());
+    }
+    extremes_ = StateExtremes{v2, a2, rhoMin, rhoMax};
+    if (first == n) return std::nullopt;
+    return check_.describe(P_, first);
   }
 
   Particles<D> P_;
@@ -145,6 +170,8 @@ class Scene {
   Real startTime_;
   Real time_;
   long step_ = 0;
+  StepContext context_;
+  StateExtremes extremes_;
   TimeStepChoice lastStep_{timeStep_.dt, "fixed"};
 };
 

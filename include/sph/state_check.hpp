@@ -1,7 +1,8 @@
 // StateCheck<D>: after every step, every value must be finite and every
-// particle inside the domain. The first offending particle (lowest id among
-// the lowest sorted index) is reported with the quantity that failed, so a
-// run that blows up stops with an explanation instead of writing garbage.
+// particle inside the domain. The first offending particle (the lowest
+// sorted index) is reported with the quantity that failed, so a run that
+// blows up stops with an explanation instead of writing garbage. The scene
+// calls ok() per particle inside the step's last loop (no pass of its own).
 #pragma once
 
 #include "sph/particles.hpp"
@@ -25,28 +26,11 @@ template <int D>
 struct StateCheck {
   Vec<D> lo, hi;
 
-  std::optional<StateFailure> operator()(const Particles<D>& P) const {
-    const std::size_t n = P.size();
-    std::size_t first = n;
-#pragma omp parallel for schedule(static) reduction(min : first) if (n >= kMinParallelSize)
-    for (std::size_t i = 0; i < n; ++i)
-      if (!ok(P, i) && i < first) first = i;
-    if (first == n) return std::nullopt;
-    return describe(P, first);
-  }
-
- private:
   bool ok(const Particles<D>& P, std::size_t i) const {
     const Vec<D>& x = P.x[i];
     return x.allFinite() && P.v[i].allFinite() && P.a[i].allFinite() &&
            std::isfinite(P.rho[i]) && (x.array() >= lo.array()).all() &&
            (x.array() <= hi.array()).all();
-  }
-
-  static std::string vecString(const Vec<D>& v) {
-    std::string s = "(";
-    for (int d = 0; d < D; ++d) s += (d ? ", " : "") + std::to_string(v[d]);
-    return s + ")";
   }
 
   StateFailure describe(const Particles<D>& P, std::size_t i) const {
@@ -72,6 +56,14 @@ struct StateCheck {
     }
     return f;
   }
+
+ private:
+  static std::string vecString(const Vec<D>& v) {
+    std::string s = "(";
+    for (int d = 0; d < D; ++d) s += (d ? ", " : "") + std::to_string(v[d]);
+    return s + ")";
+  }
+
 };
 
 }  // namespace sph

@@ -23,6 +23,13 @@ struct TimeStepChoice {
   const char* criterion;  // "fixed", "cfl", "viscous", "force", "max", "end"
 };
 
+// The extremes of the state that the time step needs, reduced by the scene
+// in the step's last loop.
+struct StateExtremes {
+  Real v2Max = 0, a2Max = 0;  // largest |v|^2, |a|^2 over the fluid
+  Real rhoMin = std::numeric_limits<Real>::infinity(), rhoMax = 0;
+};
+
 struct TimeStepControl {
   Real dt = 1e-4;   // fixed dt, or the largest adaptive dt
   Real cfl = 0;     // 0: fixed dt; > 0: adaptive with this CFL factor
@@ -30,22 +37,15 @@ struct TimeStepControl {
 
   bool adaptive() const { return cfl > 0; }
 
-  template <int D, class Model>
-  TimeStepChoice next(const Particles<D>& P, const Model& model, Real time) const {
+  template <class Model>
+  TimeStepChoice next(const StateExtremes& s, const Model& model, Real time) const {
     TimeStepChoice choice{dt, adaptive() ? "max" : "fixed"};
     if (adaptive()) {
       const Real h = model.smoothingLength();
-      Real v2 = 0, a2 = 0;
-      const std::size_t n = P.size();
-#pragma omp parallel for schedule(static) reduction(max : v2, a2) if (n >= kMinParallelSize)
-      for (std::size_t i = 0; i < n; ++i) {
-        v2 = std::max(v2, P.v[i].squaredNorm());
-        a2 = std::max(a2, P.a[i].squaredNorm());
-      }
-      consider(choice, cfl * h / (model.maxSoundSpeed(P) + std::sqrt(v2)), "cfl");
+      consider(choice, cfl * h / (model.maxSoundSpeed(s.rhoMin, s.rhoMax) + std::sqrt(s.v2Max)), "cfl");
       const Real nu = model.kinematicViscosity();
       if (nu > 0) consider(choice, 0.125 * h * h / nu, "viscous");
-      if (a2 > 0) consider(choice, 0.25 * std::sqrt(h / std::sqrt(a2)), "force");
+      if (s.a2Max > 0) consider(choice, 0.25 * std::sqrt(h / std::sqrt(s.a2Max)), "force");
     }
     // Land exactly on end_time rather than overshoot it (adaptive only: a
     // fixed dt keeps its value and the step count ceil(end_time / dt)).

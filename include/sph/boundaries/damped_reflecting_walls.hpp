@@ -25,19 +25,16 @@ struct DampedReflectingWalls {
   Real restitution;
   ReflectionRule rule = ReflectionRule::kApproaching;
 
-  void apply(Particles<D>& P) const {
-    const std::size_t n = P.size();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int d = 0; d < D; ++d) {
-        const Real lower = lo[d] + distance, upper = hi[d] - distance;
-        if (P.x[i][d] < lower) {
-          P.x[i][d] = lower;
-          reflect(P, i, d, -1);
-        } else if (P.x[i][d] > upper) {
-          P.x[i][d] = upper;
-          reflect(P, i, d, +1);
-        }
+  // Particle i, right after its position update (integrator_support.hpp).
+  void operator()(Particles<D>& P, std::size_t i) const {
+    for (int d = 0; d < D; ++d) {
+      const Real lower = lo[d] + distance, upper = hi[d] - distance;
+      if (P.x[i][d] < lower) {
+        P.x[i][d] = lower;
+        reflect(P, i, d, -1);
+      } else if (P.x[i][d] > upper) {
+        P.x[i][d] = upper;
+        reflect(P, i, d, +1);
       }
     }
   }

@@ -1,4 +1,5 @@
-// Model "seed_wcsph": the seed 2D weakly-compressible Navier-Stokes scheme.
+// Model "seed_wcsph": the seed 2D weakly-compressible Navier-Stokes scheme,
+// as a preset of the generic passes.
 //
 //   rho_i = sum_j m 4/(pi h^2) (1 - q^2)^3                (self term included)
 //   p_i   = k (rho_i - rho0)
@@ -9,24 +10,13 @@
 // with support radius h, mass scaled once so the mean density is rho0, leap-
 // frog time stepping and damped reflecting walls (see the files of each part).
 //
-// The terms a case switches off (mu = 0, g = 0) are left out of the pair loop
-// at compile time; the choice is made once per step, never per pair.
+// Passes: summation density with the linear EOS, then the seed forces.
+// The terms a case switches off (mu = 0, g = 0) are not built.
 #pragma once
 
-#include "sph/neighbour_list.hpp"
-#include "sph/kernels/seed_kernels.hpp"
-#include "sph/terms/equation_of_state.hpp"
-#include "sph/terms/pair_accelerations.hpp"
-#include "sph/terms/seed_pressure.hpp"
-#include "sph/terms/seed_viscosity.hpp"
-#include "sph/terms/summation_density.hpp"
-#include "sph/terms/uniform_gravity.hpp"
+#include "sph/models/model.hpp"
 
 #include <cmath>
-#include <optional>
-#include <string>
-#include <vector>
-#include <tuple>
 
 namespace sph {
 
@@ -39,71 +29,26 @@ struct SeedWcsphParameters {
 };
 
 template <int D>
-class SeedWcsph {
- public:
-  explicit SeedWcsph(const SeedWcsphParameters& prm)
-      : kernels_(prm.h), eos_{prm.k, prm.rho0}, pressure_{kernels_} {
-    if (prm.mu > 0) viscosity_ = SeedViscosity{kernels_, prm.mu};
-    if (prm.g != 0) gravity_ = UniformGravity<D>{prm.g};
+Model<D> makeSeedWcsph(const SeedWcsphParameters& prm) {
+  const SeedKernels kernels(prm.h);
+  typename Model<D>::Info info;
+  info.name = "seed_wcsph";
+  info.support = info.smoothingLength = prm.h;
+  info.restDensity = prm.rho0;
+  info.eos = LinearEos{prm.k, prm.rho0};
+  info.termNames = {"seed_density", "linear_eos", "seed_pressure"};
+  SeedForcePass<D> forces{SeedPressure{kernels}, std::nullopt, {}};
+  if (prm.mu > 0) {
+    forces.viscosity = SeedViscosity{kernels, prm.mu};
+    info.kinematicViscosity = prm.mu / prm.rho0;
+    info.termNames.push_back("seed_viscosity");
   }
-
-  Real support() const { return kernels_.support(); }
-  Real smoothingLength() const { return kernels_.support(); }
-  FieldNeeds needs() const { return {}; }
-  std::vector<std::string> termNames() const {
-    std::vector<std::string> names{"seed_density", "linear_eos", "seed_pressure"};
-    if (viscosity_) names.push_back("seed_viscosity");
-    if (gravity_) names.push_back("gravity");
-    return names;
+  if (prm.g != 0) {
+    forces.bodies.gravity = UniformGravity<D>{prm.g};
+    info.termNames.push_back("gravity");
   }
-  // dp/drho = k for the linear EOS.
-  Real maxSoundSpeed(const Particles<D>&) const { return std::sqrt(eos_.k); }
-  Real kinematicViscosity() const { return viscosity_ ? viscosity_->mu / eos_.rho0 : 0; }
-  Real restDensity() const { return eos_.rho0; }
-  bool hasViscosity() const { return viscosity_.has_value(); }
-  bool hasGravity() const { return gravity_.has_value(); }
-
-  // rho, p and a from the current positions and velocities. The neighbour
-  // list must have been built on these positions.
-  void computeDerived(Particles<D>& P, const NeighbourList<D>& neighbours) const {
-    computeDensity(P, neighbours);
-    computePressure(P, eos_);
-    executed_ = term_bits::kSummationDensity | term_bits::kEquationOfState;
-    const auto pair = std::make_tuple(pressure_);
-    if (viscosity_ && gravity_)
-      executed_ |= computeAccelerations(P, neighbours, support(), std::tuple_cat(pair, std::make_tuple(*viscosity_)),
-                           std::make_tuple(*gravity_));
-    else if (viscosity_)
-      executed_ |= computeAccelerations(P, neighbours, support(), std::tuple_cat(pair, std::make_tuple(*viscosity_)),
-                           std::tuple<>());
-    else if (gravity_)
-      executed_ |= computeAccelerations(P, neighbours, support(), pair, std::make_tuple(*gravity_));
-    else
-      executed_ |= computeAccelerations(P, neighbours, support(), pair, std::tuple<>());
-  }
-
-  // The passes the last computeDerived() ran (term_bits.hpp).
-  unsigned executedTerms() const { return executed_; }
-
-  void computeDensity(Particles<D>& P, const NeighbourList<D>& neighbours) const {
-    computeSummationDensity(P, neighbours, kernels_);
-  }
-
-  // Sum of m g y, zero without gravity.
-  Real potentialEnergy(const Particles<D>& P) const {
-    if (!gravity_) return 0;
-    Real e = 0;
-    for (std::size_t i = 0; i < P.size(); ++i) e += gravity_->potential(i, P);
-    return e;
-  }
-
- private:
-  SeedKernels kernels_;
-  LinearEos eos_;
-  SeedPressure pressure_;
-  std::optional<SeedViscosity> viscosity_;
-  std::optional<UniformGravity<D>> gravity_;
-  mutable unsigned executed_ = 0;
-};
+  info.bodies = forces.bodies;
+  return Model<D>(info, {SummationDensityPass<D>{kernels, info.eos}, forces});
+}
 
 }  // namespace sph

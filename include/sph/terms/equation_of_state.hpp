@@ -49,10 +49,10 @@ struct PolytropicEos {
 
 using EquationOfState = std::variant<LinearEos, ClampedLinearEos, TaitEos, PolytropicEos>;
 
-// p_i = p(rho_i), and c_i = c(rho_i) when the particles carry a sound speed.
+// p_i = p(rho_i), and c_i = c(rho_i) when the particles carry a sound
+// speed, for particles [0, n).
 template <int D, class Eos>
-void computePressure(Particles<D>& P, const Eos& eos) {
-  const std::size_t n = P.size();
+void computePressure(Particles<D>& P, const Eos& eos, std::size_t n) {
   const bool withSoundSpeed = !P.c.empty();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
   for (std::size_t i = 0; i < n; ++i) {

@@ -15,32 +15,33 @@
 #include "sph/terms/term_bits.hpp"
 
 #include "sph/kernels/muller.hpp"
-#include "sph/terms/pair_accelerations.hpp"
+#include "sph/pair_loop.hpp"
 
 namespace sph {
 
-// The positive Laplacian the viscosity uses, per kernel.
-template <class Kernel>
-Real viscosityLaplacian(const Kernel& k, Real r) {
-  return r > 0 ? -2 * k.dWdr(r) / r : -2 * k.dWdr(1e-9 * k.h()) / (1e-9 * k.h());
+// The positive Laplacian the viscosity uses, per kernel: -2 (dW/dr)/r of the
+// pair (its r -> 0 limit for coincident particles), or Mueller's viscosity
+// kernel.
+template <class Kernel, int D>
+Real viscosityLaplacian(const Kernel&, const Pair<D>& c) {
+  return -2 * c.dWdr_r;
 }
 
 template <int D>
-Real viscosityLaplacian(const Muller<D>& k, Real r) {
-  return k.laplacianW(r);
+Real viscosityLaplacian(const Muller<D>& k, const Pair<D>& c) {
+  return k.laplacianW(c.r);
 }
 
 template <class Kernel>
 struct LaplacianViscosity {
   static constexpr unsigned bit = term_bits::kLaplacianViscosity;
+  static constexpr unsigned writes = rates::kAcceleration;
   Kernel kernel;
   Real mu;
-  static constexpr bool isForceDensity = false;
 
   template <int D>
-  Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
-    return (mu * P.m[c.j] / (P.rho[c.i] * P.rho[c.j]) * viscosityLaplacian(kernel, c.r)) *
-           (P.v[c.j] - P.v[c.i]);
+  void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
+    r.a += (mu * P.m[c.j] / (P.rho[c.i] * P.rho[c.j]) * viscosityLaplacian(kernel, c)) * (P.v[c.j] - P.v[c.i]);
   }
 };
 

@@ -12,27 +12,27 @@
 
 #include "sph/terms/term_bits.hpp"
 
-#include "sph/terms/pair_accelerations.hpp"
+#include "sph/pair_loop.hpp"
 
 namespace sph {
 
 template <class Kernel>
 struct MonaghanViscosity {
   static constexpr unsigned bit = term_bits::kMonaghanViscosity;
+  static constexpr unsigned writes = rates::kAcceleration;
   Kernel kernel;
   Real alpha, beta;
   static constexpr Real eps = 0.01;
-  static constexpr bool isForceDensity = false;
 
   template <int D>
-  Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
+  void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
     const Real vr = (P.v[c.i] - P.v[c.j]).dot(c.rij);
-    if (vr >= 0) return Vec<D>::Zero();
+    if (vr >= 0) return;
     const Real h = kernel.h();
     const Real mu = h * vr / (c.r * c.r + eps * h * h);
     const Real cBar = (P.c[c.i] + P.c[c.j]) / 2, rhoBar = (P.rho[c.i] + P.rho[c.j]) / 2;
     const Real Pi = (-alpha * cBar * mu + beta * mu * mu) / rhoBar;
-    return (-P.m[c.j] * Pi) * kernel.gradW(c.rij, c.r);
+    r.a += (-P.m[c.j] * Pi) * c.gradW;
   }
 };
 

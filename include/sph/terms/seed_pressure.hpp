@@ -11,7 +11,7 @@
 #include "sph/terms/term_bits.hpp"
 
 #include "sph/kernels/seed_kernels.hpp"
-#include "sph/terms/pair_accelerations.hpp"
+#include "sph/pair_loop.hpp"
 
 namespace sph {
 
@@ -19,12 +19,12 @@ struct SeedPressure {
   static constexpr unsigned bit = term_bits::kSeedPressure;
   SeedKernels kernels;
 
-  static constexpr bool isForceDensity = true;
+  static constexpr unsigned writes = rates::kForceDensity;
 
   template <int D>
-  Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
+  void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
     const Real pBar = (P.p[c.i] + P.p[c.j]) / 2;
-    return (-P.m[c.j] / P.rho[c.j] * pBar * kernels.pressureFactor(c.q)) * c.rij;
+    r.F += (-P.m[c.j] / P.rho[c.j] * pBar * kernels.pressureFactor(c.q)) * c.rij;
   }
 };
 

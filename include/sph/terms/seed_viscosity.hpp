@@ -9,7 +9,7 @@
 #include "sph/terms/term_bits.hpp"
 
 #include "sph/kernels/seed_kernels.hpp"
-#include "sph/terms/pair_accelerations.hpp"
+#include "sph/pair_loop.hpp"
 
 namespace sph {
 
@@ -18,12 +18,11 @@ struct SeedViscosity {
   SeedKernels kernels;
   Real mu;
 
-  static constexpr bool isForceDensity = true;
+  static constexpr unsigned writes = rates::kForceDensity;
 
   template <int D>
-  Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
-    return (-mu * P.m[c.j] / P.rho[c.j] * kernels.viscosityLaplacian(c.q)) *
-           (P.v[c.i] - P.v[c.j]);
+  void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
+    r.F += (-mu * P.m[c.j] / P.rho[c.j] * kernels.viscosityLaplacian(c.q)) * (P.v[c.i] - P.v[c.j]);
   }
 };
 

@@ -1,8 +1,10 @@
-// Summation density: rho_i = sum_j m_j W(|x_i - x_j|), self term included.
+// Summation density: rho_i = sum_j m_j W(|x_i - x_j|), self term included,
+// for the fluid particles (walls in the neighbour sums), and the equation of
+// state applied to each rho_i as soon as it is known (one pass, not two).
 //
-// Gather form: particle i writes only rho_i, so the loop runs in parallel
-// without atomics and gives the same result for any thread count.
-// Kernel needs density(r2) and densityAtZero().
+// Gather form: particle i writes only rho_i, p_i (and c_i), so the loop runs
+// in parallel without atomics and gives the same result for any thread
+// count. Kernel needs density(r2) and densityAtZero().
 #pragma once
 
 #include "sph/neighbour_list.hpp"
@@ -10,18 +12,19 @@
 
 namespace sph {
 
-template <int D, class Kernel>
-void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours,
-                             const Kernel& W) {
-  const std::size_t n = P.size();
+template <int D, class Kernel, class Eos>
+void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& W,
+                             const Eos& eos) {
+  const std::size_t n = P.fluidCount();
+  const bool withSoundSpeed = !P.c.empty();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec<D> xi = P.x[i];
     Real rho_i = P.m[i] * W.densityAtZero();
-    neighbours.forEach(i, [&](std::uint32_t j) {
-      rho_i += P.m[j] * W.density((xi - P.x[j]).squaredNorm());
-    });
+    neighbours.forEach(i, [&](std::uint32_t j) { rho_i += P.m[j] * W.density((xi - P.x[j]).squaredNorm()); });
     P.rho[i] = rho_i;
+    P.p[i] = eos.pressure(rho_i);
+    if (withSoundSpeed) P.c[i] = eos.soundSpeed(rho_i);
   }
 }
 

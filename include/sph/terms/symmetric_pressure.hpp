@@ -8,21 +8,19 @@
 
 #include "sph/terms/term_bits.hpp"
 
-#include "sph/terms/pair_accelerations.hpp"
+#include "sph/pair_loop.hpp"
 
 namespace sph {
 
-template <class Kernel>
 struct SymmetricPressure {
   static constexpr unsigned bit = term_bits::kSymmetricPressure;
-  Kernel kernel;
-  static constexpr bool isForceDensity = false;
+  static constexpr unsigned writes = rates::kAcceleration;
 
   template <int D>
-  Vec<D> pair(const PairContext<D>& c, const Particles<D>& P) const {
+  void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
     const Real pi = P.p[c.i] / (P.rho[c.i] * P.rho[c.i]);
     const Real pj = P.p[c.j] / (P.rho[c.j] * P.rho[c.j]);
-    return (-P.m[c.j] * (pi + pj)) * kernel.gradW(c.rij, c.r);
+    r.a += (-P.m[c.j] * (pi + pj)) * c.gradW;
   }
 };
 

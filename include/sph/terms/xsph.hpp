@@ -3,28 +3,31 @@
 //
 //   dx_i/dt = v_i + eps sum_j (m_j / rhobar_ij) (v_j - v_i) W(r_ij, h)
 //
-// The correction is stored in vXsph and added to the drift by the integrator;
-// it moves particles with a locally averaged velocity and keeps momentum.
+// The pair sum goes to PairRates::xsph; the epilogue multiplies it by eps
+// into vXsph, which the integrators add to the drift. It moves particles
+// with a locally averaged velocity and keeps momentum. Fluid pairs only.
+// Switched on and off at run time (eps = 0: one predictable branch per pair
+// and nothing else), which halves the number of pair loops compiled.
 #pragma once
 
-#include "sph/neighbour_list.hpp"
-#include "sph/particles.hpp"
+#include "sph/pair_loop.hpp"
 
 namespace sph {
 
-template <int D, class Kernel>
-void computeXsphCorrection(Particles<D>& P, const NeighbourList<D>& neighbours,
-                           const Kernel& kernel, Real eps) {
-  const std::size_t n = P.size();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-  for (std::size_t i = 0; i < n; ++i) {
-    Vec<D> dv = Vec<D>::Zero();
-    neighbours.forEach(i, [&](std::uint32_t j) {
-      const Real r = (P.x[i] - P.x[j]).norm();
-      dv += (2 * P.m[j] / (P.rho[i] + P.rho[j]) * kernel.W(r)) * (P.v[j] - P.v[i]);
-    });
-    P.vXsph[i] = eps * dv;
+template <class Kernel>
+struct Xsph {
+  static constexpr unsigned bit = term_bits::kXsph;
+  static constexpr unsigned writes = rates::kXsph;
+  Kernel kernel;
+  Real epsilon = 0;
+
+  bool active() const { return epsilon > 0; }
+
+  template <int D>
+  void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
+    if (epsilon == 0) return;
+    r.xsph += (2 * P.m[c.j] / (P.rho[c.i] + P.rho[c.j]) * kernel.W(c.r)) * (P.v[c.j] - P.v[c.i]);
   }
-}
+};
 
 }  // namespace sph

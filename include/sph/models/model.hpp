@@ -1,0 +1,92 @@
+// Model<D>: a physics model as an explicit, ordered list of passes.
+//
+// evaluate() runs the passes in order on the sorted particles and their
+// neighbour list, each with the step context (step index, time, dt);
+// between two passes sits sync(), the hook where a ghost or halo refresh
+// will go (a no-op today). A pass is one of the value types of passes.hpp
+// and reports the term bits it ran, so a test can show that a switched-off
+// term never runs. The presets that build the lists are in seed_wcsph.hpp
+// and wcsph.hpp.
+//
+// Besides its passes a model knows what the rest of the scene asks of it:
+// its support radius and smoothing length, rest density, sound speed (for
+// the CFL time step), kinematic viscosity (viscous time step), potential
+// energy (energy.csv), and the particle fields it needs.
+#pragma once
+
+#include "sph/models/passes.hpp"
+
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace sph {
+
+template <int D>
+class Model {
+ public:
+  struct Info {
+    std::string name;            // "seed_wcsph", "wcsph"
+    Real support = 0;            // largest interaction distance
+    Real smoothingLength = 0;    // h
+    Real restDensity = 0;
+    Real kinematicViscosity = 0; // for the viscous time-step limit (0: none)
+    EquationOfState eos = LinearEos{1, 1};
+    BodyForces<D> bodies;
+    FieldSet needs = 0;          // optional fields its passes use
+    std::vector<std::string> termNames;
+  };
+
+  Model(Info info, std::vector<Pass<D>> passes) : info_(std::move(info)), passes_(std::move(passes)) {}
+
+  // rho (or its rate), p, a and the other rates at the current state. The
+  // neighbour list must have been built on these positions.
+  void evaluate(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
+    unsigned ran = 0;
+    for (const Pass<D>& pass : passes_) {
+      ran |= std::visit([&](const auto& p) { return p.run(P, neighbours, ctx); }, pass);
+      sync(P);
+    }
+    executed_ = ran;
+  }
+
+  // Density alone (the summation-density pass), for the seed's mass scaling.
+  void computeDensity(Particles<D>& P, const NeighbourList<D>& neighbours) const {
+    for (const Pass<D>& pass : passes_)
+      if (const auto* d = std::get_if<SummationDensityPass<D>>(&pass)) d->run(P, neighbours, StepContext{});
+  }
+
+  const std::string& name() const { return info_.name; }
+  Real support() const { return info_.support; }
+  Real smoothingLength() const { return info_.smoothingLength; }
+  Real restDensity() const { return info_.restDensity; }
+  Real kinematicViscosity() const { return info_.kinematicViscosity; }
+  const EquationOfState& eos() const { return info_.eos; }
+  const BodyForces<D>& bodies() const { return info_.bodies; }
+  FieldSet needs() const { return info_.needs; }
+  const std::vector<std::string>& termNames() const { return info_.termNames; }
+  const std::vector<Pass<D>>& passes() const { return passes_; }
+  // The term bits the last evaluate() ran (term_bits.hpp).
+  unsigned executedTerms() const { return executed_; }
+
+  Real potentialEnergy(const Particles<D>& P) const { return info_.bodies.potential(P); }
+
+  // Largest sound speed over the particles (for the CFL time step). Every
+  // EOS here has c monotonic in rho, so it is c at the lowest or the highest
+  // density.
+  Real maxSoundSpeed(Real rhoMin, Real rhoMax) const {
+    return std::visit([&](const auto& eos) { return std::max(eos.soundSpeed(rhoMin), eos.soundSpeed(rhoMax)); },
+                      info_.eos);
+  }
+
+ private:
+  // Between passes: where ghost particles or MPI halos will be refreshed.
+  void sync(Particles<D>&) const {}
+
+  Info info_;
+  std::vector<Pass<D>> passes_;
+  mutable unsigned executed_ = 0;
+};
+
+}  // namespace sph

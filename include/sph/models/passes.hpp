@@ -1,0 +1,17 @@
+// The passes a model is made of (one value type each, in passes/), as one
+// variant: a model holds an ordered list of them.
+#pragma once
+
+#include "sph/passes/equation_of_state.hpp"
+#include "sph/passes/seed_forces.hpp"
+#include "sph/passes/summation_density.hpp"
+#include "sph/passes/wcsph_forces.hpp"
+
+#include <variant>
+
+namespace sph {
+
+template <int D>
+using Pass = std::variant<SummationDensityPass<D>, EquationOfStatePass<D>, SeedForcePass<D>, WcsphForcePass<D>>;
+
+}  // namespace sph

@@ -1,0 +1,165 @@
+// The one pair loop (HOOMD-style evaluators, fused as in DualSPHysics'
+// fluid loop): the only place that forms r_ij, r, q and grad W for a pair.
+//
+// For every fluid particle i it visits the fluid neighbours with the
+// evaluators of `FluidPairs` and the wall neighbours with those of
+// `WallPairs`; the evaluators add into one PairRates (acceleration, force
+// density, density rate, XSPH correction), and the epilogue turns the sums
+// into the particle's rates (body forces added there). Wall particles then
+// get their own rates from their fluid neighbours with `WallParticlePairs`
+// (e.g. the density rate of dynamic boundary particles). Both loops share
+// one parallel region.
+//
+// An evaluator is a small value type with
+//   static constexpr unsigned bit;      // term_bits.hpp: which pass it is
+//   static constexpr unsigned writes;   // which PairRates members it adds to
+//   template <int D> void add(const Pair<D>&, const Particles<D>&, PairRates<D>&) const;
+// The packs are std::tuples, so the compiler inlines every evaluator into
+// the loop: no per-pair virtual call or runtime switch, and an evaluator
+// that a case does not enable is not in the pack.
+// Gather form: particle i writes only its own rates (no atomics, results
+// independent of the thread count).
+#pragma once
+
+#include "sph/neighbour_list.hpp"
+#include "sph/particles.hpp"
+#include "sph/terms/term_bits.hpp"
+
+#include <tuple>
+#include <type_traits>
+
+namespace sph {
+
+// Which members of PairRates an evaluator adds to.
+namespace rates {
+enum : unsigned { kAcceleration = 1, kForceDensity = 2, kDensityRate = 4, kXsph = 8 };
+}
+
+// One interacting pair seen from particle i. Convention: rij = x_i - x_j.
+template <int D>
+struct Pair {
+  std::uint32_t i, j;
+  Vec<D> rij;
+  Real r;        // |rij|
+  Real q;        // r / support
+  Real dWdr_r;   // (dW/dr) / r, so that grad_i W = dWdr_r rij (0 without a kernel)
+  Vec<D> gradW;  // grad_i W(r_ij)
+};
+
+template <int D>
+struct PairRates {
+  Vec<D> a = Vec<D>::Zero();     // acceleration
+  Vec<D> F = Vec<D>::Zero();     // force per volume, divided by rho_i in the epilogue
+  Real drho = 0;                 // d rho_i / dt
+  Vec<D> xsph = Vec<D>::Zero();  // XSPH velocity correction, before its epsilon
+};
+
+// The pair loop of a model with no kernel of this form (the seed scheme: its
+// terms evaluate their own factors from q).
+struct NoPairKernel {};
+
+template <class Tuple>
+struct PackTraits;
+template <class... T>
+struct PackTraits<std::tuple<T...>> {
+  static constexpr unsigned writes = (T::writes | ... | 0u);
+};
+
+// The bit of an evaluator that ran: its `bit`, unless it is switched off at
+// run time (an evaluator with active() == false).
+template <class T, class = void>
+struct HasActive : std::false_type {};
+template <class T>
+struct HasActive<T, std::void_t<decltype(std::declval<const T&>().active())>> : std::true_type {};
+
+template <class Pack>
+unsigned packBits(const Pack& pack) {
+  auto one = [](const auto& e) -> unsigned {
+    using T = std::decay_t<decltype(e)>;
+    if constexpr (HasActive<T>::value) return e.active() ? T::bit : 0u;
+    else return T::bit;
+  };
+  return std::apply([&](const auto&... t) { return (one(t) | ... | 0u); }, pack);
+}
+
+template <class Pack, int D>
+inline void addPair(const Pack& pack, const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) {
+  std::apply([&](const auto&... t) { (t.add(c, P, r), ...); }, pack);
+}
+
+// Fill in r, q and the kernel terms of the pair (i, j).
+template <int D, class Kernel>
+inline Pair<D> makePair(std::uint32_t i, std::uint32_t j, const Vec<D>& xi, const Vec<D>& xj,
+                        const Kernel& kernel, Real invSupport) {
+  Pair<D> c;
+  c.i = i;
+  c.j = j;
+  c.rij = xi - xj;
+  c.r = c.rij.norm();
+  c.q = c.r * invSupport;
+  if constexpr (!std::is_same_v<Kernel, NoPairKernel>) {
+    // At r = 0 (coincident particles) grad W is 0 and dW/dr / r takes its
+    // limit, so that Laplacian-type terms stay finite.
+    const Real r = c.r > 0 ? c.r : 1e-9 * kernel.h();
+    c.dWdr_r = kernel.dWdr(r) / r;
+    c.gradW = c.r > 0 ? Vec<D>(c.dWdr_r * c.rij) : Vec<D>::Zero();
+  } else {
+    c.dWdr_r = 0;
+    c.gradW = Vec<D>::Zero();
+  }
+  return c;
+}
+
+// Returns the term bits of the packs it ran.
+//   epilogue(i, P, rates)       writes particle i's rates (fluid particles)
+//   wallEpilogue(i, P, rates)   the same for wall particles
+template <int D, class Kernel, class FluidPairs, class WallPairs, class WallParticlePairs, class Epilogue,
+          class WallEpilogue>
+unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
+                     const FluidPairs& fluidPairs, const WallPairs& wallPairs,
+                     const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
+                     const WallEpilogue& wallEpilogue) {
+  const std::size_t n = P.size(), nFluid = P.fluidCount();
+  const Real invSupport = 1 / support;
+  constexpr bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0;
+  const bool walls = P.hasWalls();
+#pragma omp parallel if (n >= kMinParallelSize)
+  {
+    auto fluidParticle = [&](std::size_t i, auto byKind) {
+      PairRates<D> r;
+      const Vec<D> xi = P.x[i];
+      const auto ii = static_cast<std::uint32_t>(i);
+      auto fluid = [&](std::uint32_t j) { addPair(fluidPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r); };
+      if constexpr (decltype(byKind)::value)
+        neighbours.forEachByKind(i, fluid, [&](std::uint32_t j) {
+          addPair(wallPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r);
+        });
+      else
+        neighbours.forEach(i, fluid);
+      epilogue(i, P, r);
+    };
+    if (walls) {
+#pragma omp for schedule(static) nowait
+      for (std::size_t i = 0; i < nFluid; ++i) fluidParticle(i, std::true_type{});
+    } else {
+#pragma omp for schedule(static) nowait
+      for (std::size_t i = 0; i < nFluid; ++i) fluidParticle(i, std::false_type{});
+    }
+    if constexpr (wallParticles) {
+#pragma omp for schedule(static) nowait
+      for (std::size_t i = nFluid; i < n; ++i) {
+        PairRates<D> r;
+        const Vec<D> xi = P.x[i];
+        const auto ii = static_cast<std::uint32_t>(i);
+        neighbours.forEach(
+            i, [&](std::uint32_t j) { addPair(wallParticlePairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r); });
+        wallEpilogue(i, P, r);
+      }
+    }
+  }
+  unsigned bits = packBits(fluidPairs);
+  if (P.hasWalls()) bits |= packBits(wallPairs) | packBits(wallParticlePairs);
+  return bits;
+}
+
+}  // namespace sph

@@ -1,0 +1,27 @@
+// Pass: the equation of state p_i = p(rho_i) (and c_i = c(rho_i) when the
+// particles carry a sound speed) over particles [begin, end): the fluid, or
+// every particle when walls carry a density of their own (dynamic walls).
+// Used when density is a state variable (continuity density); summation
+// density applies the EOS itself.
+#pragma once
+
+#include "sph/neighbour_list.hpp"
+#include "sph/passes/step_context.hpp"
+#include "sph/terms/equation_of_state.hpp"
+#include "sph/terms/term_bits.hpp"
+
+namespace sph {
+
+template <int D>
+struct EquationOfStatePass {
+  EquationOfState eos;
+  bool walls = false;  // include the wall particles
+
+  unsigned run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const {
+    const std::size_t n = walls ? P.size() : P.fluidCount();
+    std::visit([&](const auto& e) { computePressure(P, e, n); }, eos);
+    return term_bits::kEquationOfState;
+  }
+};
+
+}  // namespace sph

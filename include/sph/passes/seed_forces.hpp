@@ -1,0 +1,64 @@
+// Pass: the seed scheme's forces in one pair loop,
+//   a_i = (F_p,i [+ F_v,i]) / rho_i [+ gravity]
+// (seed_pressure.hpp, seed_viscosity.hpp; body forces in the epilogue).
+// The seed's terms evaluate their own kernel factors from q, so the loop
+// forms no grad W (NoPairKernel). With mu = 0 the viscosity is not in the
+// pack; the choice is made once per evaluation, never per pair.
+#pragma once
+
+#include "sph/pair_loop.hpp"
+#include "sph/passes/step_context.hpp"
+#include "sph/terms/body_forces.hpp"
+#include "sph/terms/seed_pressure.hpp"
+#include "sph/terms/seed_viscosity.hpp"
+
+#include <optional>
+#include <tuple>
+
+namespace sph {
+
+// a_i = rates.a + rates.F / rho_i + body forces; the other rates as the
+// packs write them. The one epilogue of every force pass.
+template <int D, unsigned Writes>
+struct ForceEpilogue {
+  const BodyForces<D>& bodies;
+  Real xsphEpsilon = 0;
+
+  void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const {
+    Vec<D> a = r.a;
+    if constexpr ((Writes & rates::kForceDensity) != 0) a += r.F / P.rho[i];
+    bodies.add(i, P, a);
+    P.a[i] = a;
+    if constexpr ((Writes & rates::kDensityRate) != 0) P.drho[i] = r.drho;
+    if constexpr ((Writes & rates::kXsph) != 0)
+      if (xsphEpsilon > 0) P.vXsph[i] = xsphEpsilon * r.xsph;
+  }
+};
+
+// Wall particles' own rates: their density rate, when they have one.
+template <int D, unsigned Writes>
+struct WallEpilogue {
+  void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const {
+    if constexpr ((Writes & rates::kDensityRate) != 0) P.drho[i] = r.drho;
+  }
+};
+
+template <int D>
+struct SeedForcePass {
+  SeedPressure pressure;
+  std::optional<SeedViscosity> viscosity;
+  BodyForces<D> bodies;
+
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+    auto loop = [&](const auto& pack) {
+      using Pack = std::decay_t<decltype(pack)>;
+      constexpr unsigned writes = PackTraits<Pack>::writes;
+      return runPairLoop(P, neighbours, NoPairKernel{}, pressure.kernels.support(), pack, pack, std::tuple<>(),
+                         ForceEpilogue<D, writes>{bodies}, WallEpilogue<D, 0>{});
+    };
+    const unsigned bits = viscosity ? loop(std::make_tuple(pressure, *viscosity)) : loop(std::make_tuple(pressure));
+    return bits | bodies.bits();
+  }
+};
+
+}  // namespace sph

@@ -1,0 +1,48 @@
+// Pass: summation density, with the equation of state fused into it.
+//
+//   rho_i = sum_j m_j W(|x_i - x_j|)   (self term included), then p_i = p(rho_i)
+//   and c_i = c(rho_i) when the particles carry a sound speed.
+//
+// Over the fluid particles, with every neighbour (fluid and wall) in the
+// sum. The kernel is seen as a function of r^2 (density(r2) and
+// densityAtZero()); the seed scheme's density kernel has that form itself.
+#pragma once
+
+#include "sph/kernels/kernels.hpp"
+#include "sph/kernels/seed_kernels.hpp"
+#include "sph/neighbour_list.hpp"
+#include "sph/passes/step_context.hpp"
+#include "sph/terms/equation_of_state.hpp"
+#include "sph/terms/summation_density.hpp"
+#include "sph/terms/term_bits.hpp"
+
+#include <cmath>
+#include <variant>
+
+namespace sph {
+
+// W(r) of a kernel of the family, as a function of r^2.
+template <class K>
+struct DensityKernel {
+  K kernel;
+  Real density(Real r2) const { return kernel.W(std::sqrt(r2)); }
+  Real densityAtZero() const { return kernel.W(0); }
+};
+
+template <int D>
+using DensityKernelChoice =
+    std::variant<SeedKernels, DensityKernel<CubicSpline<D>>, DensityKernel<WendlandC2<D>>,
+                 DensityKernel<Gaussian<D>>, DensityKernel<Muller<D>>>;
+
+template <int D>
+struct SummationDensityPass {
+  DensityKernelChoice<D> kernel;
+  EquationOfState eos;
+
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+    std::visit([&](const auto& W, const auto& e) { computeSummationDensity(P, neighbours, W, e); }, kernel, eos);
+    return term_bits::kSummationDensity | term_bits::kEquationOfState;
+  }
+};
+
+}  // namespace sph
