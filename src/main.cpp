@@ -194,10 +194,27 @@ std::string runHelp() {
   return run.help();
 }
 
+// `sph X ...` where X is not a subcommand: most often a case file without `run`.
+int missingSubcommand(int argc, char** argv) {
+  const std::string first = argv[1];
+  std::error_code ec;
+  if (std::filesystem::path(first).extension() == ".case" || std::filesystem::is_regular_file(first, ec)) {
+    std::string command = "sph run";
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      command += a.find(' ') == std::string::npos ? " " + a : " \"" + a + "\"";
+    }
+    return fail("missing subcommand: did you mean '" + command + "'?");
+  }
+  return fail("unknown subcommand '" + first + "': the subcommand is 'run': " +
+              "sph run CASE_FILE [--output DIR] [--KEY VALUE ...] ('sph --help' lists the keys)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "run") return runCommand(argc - 1, argv + 1);
+  if (argc >= 2 && argv[1][0] != '-') return missingSubcommand(argc, argv);
   CLI::App app(kTopHelp, "sph");
   app.set_version_flag("--version", std::string("sph ") + SPH_VERSION);
   app.set_help_flag();
@@ -208,8 +225,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "sph: error: " << e.what() << "\n";
-    return sph::kBadInput;
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !app.remaining().empty())
+      return fail("unknown option '" + app.remaining().front() + "': sph --help, sph --version or " +
+                  "sph run CASE_FILE [--output DIR] [--KEY VALUE ...]");
+    return fail(e.what());
   }
   std::cout << kTopHelp << "\n\n" << runHelp();
   return help ? 0 : sph::kBadInput;
