@@ -2,13 +2,19 @@
 // unit, default and allowed range; CLI11 reads the case file (TOML-style
 // `key = value`) and lets any flag override it. This is the only translation
 // unit that includes CLI11, and the only place that picks the dimension D.
+// Case files are read by sph's own strict reader (sph/case_file.hpp), which
+// CLI11 calls through the config-formatter hook (CaseFileFormat below).
 #include "sph/case_config.hpp"
+#include "sph/case_file.hpp"
 #include "sph/run_case.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <cctype>
 #include <filesystem>
 #include <iostream>
+#include <map>
+#include <memory>
 
 namespace {
 
@@ -80,20 +86,73 @@ void declareKeys(CLI::App& run, sph::CaseConfig& c) {
       "Particles from a CSV (header x,y[,z][,vx,vy[,vz]]) or a .vtp written by sph");
 }
 
+// CLI11 reads the case file through this: sph's strict reader instead of
+// CLI11's own (see sph/case_file.hpp for why). It remembers the line of each
+// key for explain(); it cannot write case files.
+class CaseFileFormat : public CLI::Config {
+ public:
+  std::string to_config(const CLI::App*, bool, bool, std::string) const override { return ""; }
+  std::vector<CLI::ConfigItem> from_config(std::istream& in) const override {
+    std::vector<CLI::ConfigItem> out;
+    for (sph::CaseEntry& e : sph::readCaseFile(in)) {
+      lines_[e.key] = e.line;
+      out.push_back(CLI::ConfigItem{{}, std::move(e.key), std::move(e.values)});
+    }
+    return out;
+  }
+  std::size_t lineOf(const std::string& key) const {
+    const auto it = lines_.find(key);
+    return it == lines_.end() ? 0 : it->second;
+  }
+
+ private:
+  mutable std::map<std::string, std::size_t> lines_;
+};
+
+// The keys `run` declares (long flag names without dashes), for suggestions.
+std::vector<std::string> knownKeys(const CLI::App& run) {
+  std::vector<std::string> keys;
+  for (const CLI::Option* o : run.get_options())
+    if (o != run.get_config_ptr()) keys.insert(keys.end(), o->get_lnames().begin(), o->get_lnames().end());
+  return keys;
+}
+
+// One line on stderr, control characters escaped; the bad-input exit status.
+int fail(const std::string& message) {
+  std::cerr << "sph: error: " << sph::escapeControl(message) << "\n";
+  return sph::kBadInput;
+}
+
 // CLI11's messages, reworded where they would not name the key or file.
-std::string explain(const CLI::ParseError& e, const CLI::App& run) {
+std::string explain(const CLI::ParseError& e, const CLI::App& run, const CaseFileFormat& format) {
   const std::string what = e.what();
   const std::string extra = "INI was not able to parse ";
   const std::string caseFile = run.get_config_ptr()->count() ? run.get_config_ptr()->as<std::string>() : "";
-  if (what.rfind(extra, 0) == 0)
-    return "case file " + caseFile + ": unknown key '" + what.substr(extra.size()) +
-           "' ('sph run --help' lists the keys)";
+  if (what.rfind(extra, 0) == 0) {
+    const std::string key = what.substr(extra.size());
+    return sph::unknownKeyMessage(key, "case file " + caseFile + " line " + std::to_string(format.lineOf(key)),
+                                  knownKeys(run));
+  }
+  // Arguments CLI11 did not take: the first unknown flag, else the first one.
+  const std::vector<std::string> extras = run.remaining();
+  for (const std::string& arg : extras) {
+    if (arg == "--") break;  // the rest are positional
+    if (arg.size() < 2 || arg[0] != '-' || std::isdigit(static_cast<unsigned char>(arg[1]))) continue;
+    const std::string key = arg.substr(arg[1] == '-' ? 2 : 1);  // --key, --key=value, -k
+    if (!key.empty() && key[0] != '=')
+      return sph::unknownKeyMessage(key.substr(0, key.find('=')), "on the command line", knownKeys(run));
+  }
+  if (dynamic_cast<const CLI::ExtrasError*>(&e) && !extras.empty())
+    return "unexpected argument '" + extras.front() + "': sph run takes one case file, then --KEY VALUE pairs";
   if (what.find("no specified config file") != std::string::npos)
     return "sph run needs a case file: sph run CASE_FILE [--output DIR] [--KEY VALUE ...]";
   if (dynamic_cast<const CLI::ConversionError*>(&e))
     return what + " is not a valid value ('sph run --help' gives each key's type and range)";
-  if (dynamic_cast<const CLI::FileError*>(&e))
+  if (dynamic_cast<const CLI::FileError*>(&e)) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(caseFile, ec)) return "case file " + caseFile + " is a directory, not a case file";
     return "case file " + caseFile + " cannot be read (missing or not a file)";
+  }
   return what;
 }
 
@@ -105,22 +164,25 @@ int runCommand(int argc, char** argv) {
                "sph run");
   run.set_config("case_file", "", "Case file to run (see cases/)", true);
   run.allow_config_extras(CLI::config_extras_mode::error);
+  const auto format = std::make_shared<CaseFileFormat>();
+  run.config_formatter(format);
   declareKeys(run, c);
   try {
     run.parse(argc, argv);
   } catch (const CLI::Success& e) {
     return run.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "sph: error: " << explain(e, run) << "\n";
-    return sph::kBadInput;
+    return fail(explain(e, run, *format));
+  } catch (const sph::CaseFileError& e) {
+    const std::string line = e.line() ? " line " + std::to_string(e.line()) : "";
+    return fail("case file " + run.get_config_ptr()->as<std::string>() + line + ": " + e.what());
   }
   c.caseFile = run.get_config_ptr()->as<std::string>();
-  if (run.count("--name") == 0) c.name = std::filesystem::path(c.caseFile).stem().string();
+  if (run.count("--name") == 0) c.name = sph::defaultRunName(c.caseFile);
   if (c.output.empty()) c.output = (std::filesystem::path("runs") / c.name).string();
   if (c.dimension == 3) return sph::runCase<3>(c, std::cout, std::cerr);
   if (c.dimension == 2) return sph::runCase<2>(c, std::cout, std::cerr);
-  std::cerr << "sph: error: dimension = " << c.dimension << " is out of range: it must be 2 or 3\n";
-  return sph::kBadInput;
+  return fail("dimension = " + std::to_string(c.dimension) + " is out of range: it must be 2 or 3");
 }
 
 std::string runHelp() {
@@ -132,10 +194,27 @@ std::string runHelp() {
   return run.help();
 }
 
+// `sph X ...` where X is not a subcommand: most often a case file without `run`.
+int missingSubcommand(int argc, char** argv) {
+  const std::string first = argv[1];
+  std::error_code ec;
+  if (std::filesystem::path(first).extension() == ".case" || std::filesystem::is_regular_file(first, ec)) {
+    std::string command = "sph run";
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      command += a.find(' ') == std::string::npos ? " " + a : " \"" + a + "\"";
+    }
+    return fail("missing subcommand: did you mean '" + command + "'?");
+  }
+  return fail("unknown subcommand '" + first + "': the subcommand is 'run': " +
+              "sph run CASE_FILE [--output DIR] [--KEY VALUE ...] ('sph --help' lists the keys)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "run") return runCommand(argc - 1, argv + 1);
+  if (argc >= 2 && argv[1][0] != '-') return missingSubcommand(argc, argv);
   CLI::App app(kTopHelp, "sph");
   app.set_version_flag("--version", std::string("sph ") + SPH_VERSION);
   app.set_help_flag();
@@ -146,8 +225,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "sph: error: " << e.what() << "\n";
-    return sph::kBadInput;
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !app.remaining().empty())
+      return fail("unknown option '" + app.remaining().front() + "': sph --help, sph --version or " +
+                  "sph run CASE_FILE [--output DIR] [--KEY VALUE ...]");
+    return fail(e.what());
   }
   std::cout << kTopHelp << "\n\n" << runHelp();
   return help ? 0 : sph::kBadInput;

@@ -1,5 +1,6 @@
 #include "sph/run_case.hpp"
 
+#include "sph/case_file.hpp"
 #include "sph/io/atomic_file.hpp"
 #include "sph/io/pvd_series.hpp"
 #include "sph/io/vtp_io.hpp"
@@ -165,7 +166,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     c = withDefaults(given);
     init = buildInitialState<D>(c);
   } catch (const CaseError& e) {
-    err << "sph: error: " << e.what() << "\n";
+    err << "sph: error: " << escapeControl(e.what()) << "\n";  // values are echoed: no raw control bytes
     return kBadInput;
   } catch (const std::bad_alloc&) {
     err << "sph: error: not enough memory for the particles of this case (reduce spacing, "
@@ -203,7 +204,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   }
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir)) {
-    err << "sph: error: output folder " << c.output << " cannot be created"
+    err << "sph: error: output folder " << escapeControl(c.output) << " cannot be created"
         << (ec ? ": " + ec.message() : std::string()) << "\n";
     std::error_code ignored;
     if (!firstNew.empty()) std::filesystem::remove_all(firstNew, ignored);
