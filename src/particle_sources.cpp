@@ -68,37 +68,70 @@ std::vector<std::string> splitCsvLine(const std::string& line) {
   return cells;
 }
 
+std::string trimmedLine(const std::string& line) {
+  const auto e = line.find_last_not_of(" \t\r");
+  return e == std::string::npos ? "" : line.substr(0, e + 1);
+}
+
+// A CSV file: a header line naming the columns (x, y[, z][, vx, vy[, vz]],
+// in any order), then one particle per line. Lines that are empty or start
+// with '#' are skipped. A column that would be silently dropped (unknown, a
+// repeat, z in 2D, vy without vx) is an error, as is a row of the wrong width.
 template <int D>
 void addCsv(Particles<D>& P, const std::string& path) {
   std::ifstream in(path);
   if (!in) throw CaseError("particle_file " + path + " cannot be opened");
+  const std::string where = "particle_file " + path;
+  const std::string allowed = std::string("x, y") + (D == 3 ? ", z" : "") + " and optionally vx, vy" +
+                              (D == 3 ? ", vz" : "") + " (dimension = " + std::to_string(D) + ")";
+  auto skipped = [](const std::string& l) {
+    return l.empty() || l[0] == '#' || l.find_first_not_of(" \t\r") == std::string::npos;
+  };
   std::string line;
-  std::vector<std::string> header;
-  while (std::getline(in, line) && (line.empty() || line[0] == '#')) {}
-  header = splitCsvLine(line);
+  long lineNo = 0;
+  while (std::getline(in, line) && (++lineNo, skipped(line))) {}
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark (spreadsheets write one)
+  std::vector<std::string> header = splitCsvLine(line);
   std::map<std::string, std::size_t> column;
-  for (std::size_t k = 0; k < header.size(); ++k) column[header[k]] = k;
+  for (std::size_t k = 0; k < header.size(); ++k) {
+    std::string& name = header[k];
+    if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
+    if (!column.emplace(name, k).second)
+      throw CaseError(where + ": column " + name + " appears twice in the header line");
+  }
   const char* xNames[3] = {"x", "y", "z"};
   const char* vNames[3] = {"vx", "vy", "vz"};
-  std::size_t xCol[3], vCol[3];
-  bool hasV = column.count("vx") > 0;
-  for (int d = 0; d < D; ++d) {
+  for (int d = 0; d < D; ++d)
     if (!column.count(xNames[d]))
-      throw CaseError("particle_file " + path + ": the header line needs columns x, y" +
-                      (D == 3 ? ", z" : "") + " (optionally vx, vy" + (D == 3 ? ", vz" : "") +
-                      "); it has: " + line);
+      throw CaseError(where + ": the header line needs columns x, y" + (D == 3 ? ", z" : "") +
+                      " (optionally vx, vy" + (D == 3 ? ", vz" : "") + "); it has: " + trimmedLine(line));
+  for (const auto& [name, k] : column) {
+    bool known = false;
+    for (int d = 0; d < D; ++d) known = known || name == xNames[d] || name == vNames[d];
+    if (!known)
+      throw CaseError(where + ": header column " + std::to_string(k + 1) + " is '" + name +
+                      "'; the columns may be " + allowed);
+  }
+  std::size_t xCol[3], vCol[3];
+  bool hasV = false;
+  for (int d = 0; d < D; ++d) hasV = hasV || column.count(vNames[d]) > 0;
+  for (int d = 0; d < D; ++d) {
     xCol[d] = column[xNames[d]];
     if (hasV) {
       if (!column.count(vNames[d]))
-        throw CaseError("particle_file " + path + ": column " + vNames[d] + " is missing");
+        throw CaseError(where + ": column " + vNames[d] + " is missing: give all of vx, vy" +
+                        (D == 3 ? ", vz" : "") + " or none");
       vCol[d] = column[vNames[d]];
     }
   }
-  long lineNo = 1;
+  const std::size_t before = P.x.size();
   while (std::getline(in, line)) {
     ++lineNo;
-    if (line.empty() || line[0] == '#' || line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (skipped(line)) continue;
     const auto cells = splitCsvLine(line);
+    if (cells.size() != header.size())
+      throw CaseError(where + " line " + std::to_string(lineNo) + ": " + std::to_string(cells.size()) +
+                      " values, but the header line has " + std::to_string(header.size()) + " columns");
     auto number = [&](std::size_t col) {
       try {
         std::size_t used = 0;
@@ -106,8 +139,8 @@ void addCsv(Particles<D>& P, const std::string& path) {
         if (used != cells[col].size() || !std::isfinite(value)) throw std::invalid_argument("");
         return value;
       } catch (const std::exception&) {
-        throw CaseError("particle_file " + path + " line " + std::to_string(lineNo) +
-                        ": column " + std::to_string(col + 1) + " is not a finite number");
+        throw CaseError(where + " line " + std::to_string(lineNo) + ": column " + std::to_string(col + 1) +
+                        " is not a finite number");
       }
     };
     Vec<D> x, v = Vec<D>::Zero();
@@ -116,18 +149,23 @@ void addCsv(Particles<D>& P, const std::string& path) {
       for (int d = 0; d < D; ++d) v[d] = number(vCol[d]);
     addParticle(P, x, v);
   }
+  if (P.x.size() == before) throw CaseError(where + " has a header line but no particles");
 }
 
+// A .vtp (as sph writes it): positions, velocities, masses, ids and the time.
 template <int D>
 void addVtp(InitialState<D>& s, const std::string& path) {
   VtpParticles f;
   try {
     f = readVtp(path);
-  } catch (const std::runtime_error& e) {
-    throw CaseError(std::string("particle_file: ") + e.what());
+  } catch (const std::exception& e) {
+    throw CaseError(std::string("particle_file ") + e.what());
   }
   const bool withMass = !f.m.empty();
   for (std::size_t i = 0; i < f.x.size(); ++i) {
+    if (D == 2 && (f.x[i][2] != 0 || (f.hasVelocity && f.v[i][2] != 0)))
+      throw CaseError("particle_file " + path + ": particle " + std::to_string(i) +
+                      " has a z position or velocity other than 0, but the case has dimension = 2");
     Vec<D> x, v = Vec<D>::Zero();
     for (int d = 0; d < D; ++d) {
       x[d] = f.x[i][static_cast<std::size_t>(d)];

@@ -11,7 +11,6 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkTypeInt64Array.h>
-#include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <malloc.h>
@@ -145,43 +144,5 @@ void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo
 
 template void writeVtp<2>(const std::string&, const Particles<2>&, const SnapshotInfo&);
 template void writeVtp<3>(const std::string&, const Particles<3>&, const SnapshotInfo&);
-
-VtpParticles readVtp(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw std::runtime_error("particle file " + path + " does not exist or is not a file");
-  vtkNew<vtkXMLPolyDataReader> reader;
-  if (!reader->CanReadFile(path.c_str()))
-    throw std::runtime_error("particle file " + path + " is not a readable VTK PolyData (.vtp) file");
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkPolyData* poly = reader->GetOutput();
-  if (poly == nullptr || poly->GetPoints() == nullptr)
-    throw std::runtime_error("particle file " + path + " holds no points");
-
-  VtpParticles out;
-  const vtkIdType n = poly->GetNumberOfPoints();
-  out.x.resize(static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i) poly->GetPoint(i, out.x[static_cast<std::size_t>(i)].data());
-
-  vtkPointData* pd = poly->GetPointData();
-  if (vtkDataArray* v = pd->GetArray("velocity"); v && v->GetNumberOfComponents() == 3) {
-    out.hasVelocity = true;
-    out.v.resize(static_cast<std::size_t>(n));
-    for (vtkIdType i = 0; i < n; ++i) v->GetTuple(i, out.v[static_cast<std::size_t>(i)].data());
-  }
-  if (vtkDataArray* m = pd->GetArray("mass"); m && m->GetNumberOfComponents() == 1) {
-    out.m.resize(static_cast<std::size_t>(n));
-    for (vtkIdType i = 0; i < n; ++i) out.m[static_cast<std::size_t>(i)] = m->GetTuple1(i);
-  }
-  if (vtkDataArray* id = pd->GetArray("id"); id && id->GetNumberOfComponents() == 1) {
-    out.id.resize(static_cast<std::size_t>(n));
-    for (vtkIdType i = 0; i < n; ++i)
-      out.id[static_cast<std::size_t>(i)] = static_cast<std::int64_t>(id->GetTuple1(i));
-  }
-  if (vtkDataArray* t = poly->GetFieldData()->GetArray("TimeValue"); t && t->GetNumberOfTuples() > 0)
-    out.time = t->GetTuple1(0);
-  return out;
-}
 
 }  // namespace sph

@@ -37,7 +37,12 @@ struct VtpParticles {
   bool hasVelocity = false;
 };
 
-// Throws std::runtime_error naming the file on failure.
+// Reads the particles of a .vtp (src/vtp_read.cpp): one PolyData piece with
+// appended raw data, as sph and ParaView write it. The header is checked
+// against the file before VTK reads it, VTK prints nothing, and the values
+// are checked (finite positions and velocities, masses > 0, unique ids,
+// TimeValue finite and >= 0). Throws std::runtime_error, one line starting
+// with the path, on any damaged or unsuitable file.
 VtpParticles readVtp(const std::string& path);
 
 }  // namespace sph

@@ -1,0 +1,628 @@
+// readVtp: particles from a .vtp file, such that no file can crash or hang sph.
+//
+// VTK's XML reader trusts the file it reads: a damaged block header or an
+// absurd NumberOfPoints / NumberOfComponents makes it divide by zero, read
+// out of bounds, allocate gigabytes or loop for minutes (found by feeding it
+// broken files). So, before VTK sees the file, checkLayout() reads the small
+// XML header itself (a plain scan of the tags before <AppendedData>) and
+// checks the structure (one PolyData piece with Points) and every DataArray:
+// a known type, 1 to kMaxComponents components, appended raw data, and a
+// block header that lies inside the file and holds exactly the bytes that
+// NumberOfPoints (cells, tuples) times the components need; and the last
+// cell offset, by which VTK sizes the connectivity (an unchecked value that
+// aborts VTK when damaged), must fit that array. Only then does
+// VTK read the file, with its log output captured (its first error becomes
+// our message) and only the point arrays sph uses; last, the values are
+// checked: finite positions and velocities, masses > 0, unique ids,
+// TimeValue finite and >= 0.
+#include "sph/io/vtp_io.hpp"
+
+#include <vtkDataArray.h>
+#include <vtkDataArraySelection.h>
+#include <vtkFieldData.h>
+#include <vtkLZ4DataCompressor.h>
+#include <vtkLZMADataCompressor.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkVariant.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkZLibDataCompressor.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace sph {
+namespace {
+
+constexpr std::uint64_t kMaxHeaderBytes = 4u << 20;    // sph's own headers are ~5 kB
+constexpr std::uint64_t kMaxCount = 1000000000;        // points, cells or tuples (= kMaxParticles)
+constexpr std::uint64_t kMaxComponents = 64;
+
+// A problem with the file; readVtp() prefixes the path.
+struct Problem : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Text from the file, made safe for a one-line message.
+std::string printable(const std::string& s) {
+  std::string out;
+  for (char c : s.substr(0, 40)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+  return s.size() > 40 ? out + "..." : out;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+// ---- The XML header, as a tree of elements ----
+
+struct Element {
+  std::string name;
+  std::map<std::string, std::string> attributes;
+  int parent = -1;
+  std::vector<int> children;
+
+  std::optional<std::string> attribute(const std::string& key) const {
+    const auto it = attributes.find(key);
+    if (it == attributes.end()) return std::nullopt;
+    return trimmed(it->second);
+  }
+};
+
+struct Header {
+  std::vector<Element> elements;  // [0] is the root
+  bool hasAppendedData = false;
+  std::string appendedEncoding;
+  std::uint64_t appendedStart = 0;  // file offset of the byte after the '_' that starts the data
+};
+
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+bool isNameChar(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == ':' || c == '-' || c == '.';
+}
+
+// The tags before "<AppendedData" (where VTK's parser stops, too) and that
+// tag itself. Text between tags, comments, <?...?> and <!...> are skipped.
+Header parseHeader(const std::string& s) {
+  Header h;
+  const std::size_t stop = s.find("<AppendedData");  // npos: the whole text is XML
+  std::vector<int> open;
+  std::size_t i = 0;
+  auto fail = [&](const std::string& what) {
+    throw Problem("its XML header is malformed at byte " + std::to_string(std::min(i, s.size())) + ": " + what);
+  };
+  auto skipTo = [&](const char* end, std::size_t from) {
+    const std::size_t e = s.find(end, from);
+    if (e == std::string::npos || (stop != std::string::npos && e > stop)) fail("unterminated <! or <?");
+    return e + std::char_traits<char>::length(end);
+  };
+  while ((i = s.find('<', i)) != std::string::npos) {
+    if (s.compare(i, 4, "<!--") == 0) { i = skipTo("-->", i + 4); continue; }
+    if (s.compare(i, 2, "<?") == 0) { i = skipTo("?>", i + 2); continue; }
+    if (s.compare(i, 2, "<!") == 0) { i = skipTo(">", i + 2); continue; }
+    std::size_t j = i + 1;
+    const bool closing = j < s.size() && s[j] == '/';
+    if (closing) ++j;
+    const std::size_t nameStart = j;
+    while (j < s.size() && isNameChar(s[j])) ++j;
+    Element e;
+    e.name = s.substr(nameStart, j - nameStart);
+    if (e.name.empty()) fail("a '<' that starts no tag");
+    bool selfClosing = false;
+    for (;;) {
+      while (j < s.size() && isSpace(s[j])) ++j;
+      if (j >= s.size()) fail("the tag <" + printable(e.name) + " is not closed");
+      if (s[j] == '>') { ++j; break; }
+      if (!closing && s[j] == '/' && j + 1 < s.size() && s[j + 1] == '>') { selfClosing = true; j += 2; break; }
+      std::size_t k = j;
+      while (k < s.size() && isNameChar(s[k])) ++k;
+      if (closing || k == j) fail("unexpected character in the tag <" + printable(e.name) + ">");
+      const std::string key = s.substr(j, k - j);
+      while (k < s.size() && isSpace(s[k])) ++k;
+      if (k >= s.size() || s[k] != '=') fail("attribute " + printable(key) + " has no value");
+      ++k;
+      while (k < s.size() && isSpace(s[k])) ++k;
+      if (k >= s.size() || (s[k] != '"' && s[k] != '\'')) fail("attribute " + printable(key) + " is not quoted");
+      const std::size_t close = s.find(s[k], k + 1);
+      if (close == std::string::npos) fail("attribute " + printable(key) + " is not closed");
+      if (!e.attributes.emplace(key, s.substr(k + 1, close - k - 1)).second)
+        fail("attribute " + printable(key) + " appears twice");
+      j = close + 1;
+    }
+    // A tag that swallows "<AppendedData" is read differently by VTK: refuse.
+    if (stop != std::string::npos && i < stop && j > stop) fail("<AppendedData inside another tag");
+    if (closing) {
+      if (open.empty() || h.elements[static_cast<std::size_t>(open.back())].name != e.name)
+        fail("</" + printable(e.name) + "> closes no open element");
+      open.pop_back();
+      i = j;
+      continue;
+    }
+    if (open.empty() && !h.elements.empty()) fail("a second root element <" + printable(e.name) + ">");
+    if (open.size() > 32) fail("elements nested too deep");
+    e.parent = open.empty() ? -1 : open.back();
+    const int index = static_cast<int>(h.elements.size());
+    if (e.parent >= 0) h.elements[static_cast<std::size_t>(e.parent)].children.push_back(index);
+    h.elements.push_back(std::move(e));
+    if (i == stop) {
+      // The raw data start after the tag, white space and one '_'.
+      while (j < s.size() && isSpace(s[j])) ++j;
+      if (j >= s.size() || s[j] != '_') fail("the appended data do not start with '_'");
+      h.hasAppendedData = true;
+      h.appendedEncoding = h.elements.back().attribute("encoding").value_or("");
+      h.appendedStart = j + 1;
+      return h;
+    }
+    if (!selfClosing) open.push_back(index);
+    i = j;
+  }
+  if (!open.empty())
+    throw Problem("its XML header ends before <" + printable(h.elements[static_cast<std::size_t>(open.back())].name) +
+                  "> is closed: the file is truncated or damaged");
+  return h;
+}
+
+// ---- Checking the header against the file ----
+
+std::uint64_t parseCount(const std::optional<std::string>& value, const std::string& key, std::uint64_t max) {
+  const std::string v = value.value_or("");
+  if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
+    throw Problem(key + " = \"" + printable(v) + "\" is not a whole number >= 0");
+  std::uint64_t n = 0;
+  for (char c : v) {
+    n = n * 10 + static_cast<std::uint64_t>(c - '0');
+    if (n > max)
+      throw Problem(key + " = " + printable(v) + " is out of range: at most " + std::to_string(max) +
+                    " are allowed");
+  }
+  return n;
+}
+
+// Bytes per value of a VTK XML type name; 0 if not a numeric type.
+std::uint64_t typeSize(const std::string& type) {
+  static const std::map<std::string, std::uint64_t> sizes{
+      {"Int8", 1},  {"UInt8", 1},  {"Int16", 2},   {"UInt16", 2},  {"Int32", 4},
+      {"UInt32", 4}, {"Int64", 8}, {"UInt64", 8}, {"Float32", 4}, {"Float64", 8}};
+  const auto it = sizes.find(type);
+  return it == sizes.end() ? 0 : it->second;
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+bool isFloatType(const std::string& type) { return type == "Float32" || type == "Float64"; }
+
+struct File {
+  std::ifstream in;
+  std::uint64_t size = 0;
+  bool bigEndian = false;
+  std::uint64_t wordBytes = 4;  // header_type UInt32 or UInt64
+  std::string compressor;       // "" for none
+
+  std::vector<unsigned char> bytes(std::uint64_t pos, std::uint64_t count) {
+    std::vector<unsigned char> raw(static_cast<std::size_t>(count));
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(pos));
+    in.read(reinterpret_cast<char*>(raw.data()), static_cast<std::streamsize>(raw.size()));
+    if (!in) throw Problem("cannot be read at byte " + std::to_string(pos));
+    return raw;
+  }
+  // An unsigned integer of `n` bytes in the file's byte order.
+  std::uint64_t decode(const unsigned char* p, std::uint64_t n) const {
+    std::uint64_t v = 0;
+    for (std::uint64_t b = 0; b < n; ++b) v |= static_cast<std::uint64_t>(p[b]) << (8 * (bigEndian ? n - 1 - b : b));
+    return v;
+  }
+  std::vector<std::uint64_t> words(std::uint64_t pos, std::uint64_t count) {
+    const auto raw = bytes(pos, count * wordBytes);
+    std::vector<std::uint64_t> out(static_cast<std::size_t>(count));
+    for (std::size_t w = 0; w < out.size(); ++w) out[w] = decode(raw.data() + w * wordBytes, wordBytes);
+    return out;
+  }
+};
+
+// Where an array's data lie: its block header at `pos`, `bytes` of data,
+// and when compressed, blocks of `blockSize` bytes (the last one `lastSize`)
+// stored in `compressed[i]` bytes each, after the header.
+struct Stored {
+  std::uint64_t pos = 0, bytes = 0, blockSize = 0, lastSize = 0;
+  std::vector<std::uint64_t> compressed;
+};
+
+// The block header at `pos`, after checking that it and the (compressed)
+// blocks lie inside the file.
+Stored stored(File& f, std::uint64_t pos, const std::string& what) {
+  const std::string truncated = what + " runs past the end of the file (" + std::to_string(f.size) +
+                                " bytes): the file is truncated or damaged";
+  if (pos > f.size) throw Problem(truncated);
+  const std::uint64_t room = f.size - pos, w = f.wordBytes;
+  Stored s;
+  s.pos = pos;
+  if (f.compressor.empty()) {
+    if (room < w) throw Problem(truncated);
+    s.bytes = f.words(pos, 1)[0];
+    if (s.bytes > room - w) throw Problem(truncated);
+    return s;
+  }
+  if (room < 3 * w) throw Problem(truncated);
+  const auto head = f.words(pos, 3);
+  const std::uint64_t blocks = head[0];
+  s.blockSize = head[1];
+  if (blocks > (room - 3 * w) / w) throw Problem(truncated);
+  std::uint64_t left = room - (3 + blocks) * w;
+  s.compressed = f.words(pos + 3 * w, blocks);
+  for (std::uint64_t size : s.compressed) {
+    if (size > left) throw Problem(truncated);
+    left -= size;
+  }
+  if (blocks == 0) return s;
+  if (s.blockSize == 0 || head[2] > s.blockSize)
+    throw Problem(what + " has a damaged compression header (block size " + std::to_string(s.blockSize) +
+                  ", last block " + std::to_string(head[2]) + ")");
+  s.lastSize = head[2] > 0 ? head[2] : s.blockSize;
+  if (blocks - 1 > (std::numeric_limits<std::uint64_t>::max() - s.lastSize) / s.blockSize)
+    throw Problem(what + " has a damaged compression header (" + std::to_string(blocks) + " blocks)");
+  s.bytes = (blocks - 1) * s.blockSize + s.lastSize;
+  return s;
+}
+
+// The last value of an array of unsigned integers of `size` bytes (as
+// stored; a signed negative value reads as a huge one).
+std::uint64_t lastValue(File& f, const Stored& s, std::uint64_t size, const std::string& what) {
+  if (s.bytes < size) throw Problem(what + " is empty");
+  if (f.compressor.empty()) return f.decode(f.bytes(s.pos + f.wordBytes + s.bytes - size, size).data(), size);
+  if (s.blockSize % size != 0)
+    throw Problem(what + " has a damaged compression header (block size " + std::to_string(s.blockSize) + ")");
+  const std::size_t last = s.compressed.size() - 1;
+  std::uint64_t at = s.pos + (3 + s.compressed.size()) * f.wordBytes;
+  for (std::size_t b = 0; b < last; ++b) at += s.compressed[b];
+  const auto packed = f.bytes(at, s.compressed[last]);
+  std::vector<unsigned char> block(static_cast<std::size_t>(s.lastSize));
+  vtkSmartPointer<vtkDataCompressor> c;
+  if (f.compressor == "vtkZLibDataCompressor") c = vtkSmartPointer<vtkZLibDataCompressor>::New();
+  else if (f.compressor == "vtkLZ4DataCompressor") c = vtkSmartPointer<vtkLZ4DataCompressor>::New();
+  else c = vtkSmartPointer<vtkLZMADataCompressor>::New();
+  if (c->Uncompress(packed.data(), packed.size(), block.data(), block.size()) != block.size())
+    throw Problem(what + ": its data cannot be uncompressed (a damaged file?)");
+  return f.decode(block.data() + block.size() - size, size);
+}
+
+struct Layout {
+  std::uint64_t points = 0;
+  bool velocity = false, mass = false, id = false, time = false;
+};
+
+const Element* onlyChild(const Header& h, const Element& parent, const std::string& name, bool required,
+                         const std::string& where) {
+  const Element* found = nullptr;
+  for (int c : parent.children) {
+    const Element& e = h.elements[static_cast<std::size_t>(c)];
+    if (e.name != name) continue;
+    if (found) throw Problem(where + " has more than one <" + name + "> (sph reads files with one)");
+    found = &e;
+  }
+  if (!found && required) throw Problem(where + " has no <" + name + "> element");
+  return found;
+}
+
+// Everything that can be checked before VTK reads the file.
+Layout checkLayout(const std::string& path) {
+  File f;
+  std::error_code ec;
+  f.size = std::filesystem::file_size(path, ec);
+  if (ec) throw Problem("cannot be read: " + ec.message());
+  if (f.size == 0) throw Problem("is empty");
+  f.in.open(path, std::ios::binary);
+  if (!f.in) throw Problem("cannot be opened");
+  std::string text(static_cast<std::size_t>(std::min(f.size, kMaxHeaderBytes)), '\0');
+  f.in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!f.in) throw Problem("cannot be read");
+
+  const Header h = parseHeader(text);
+  if (h.elements.empty() || h.elements[0].name != "VTKFile")
+    throw Problem("is not a VTK XML file (it has no <VTKFile> element)");
+  if (!h.hasAppendedData && f.size > kMaxHeaderBytes)
+    throw Problem("has no <AppendedData> in its first " + std::to_string(kMaxHeaderBytes) +
+                  " bytes (sph reads .vtp files with appended data, as sph and ParaView write them)");
+  const Element& root = h.elements[0];
+  const std::string type = root.attribute("type").value_or("");
+  if (type != "PolyData")
+    throw Problem("is a VTK file of type \"" + printable(type) + "\": sph reads PolyData (.vtp) files");
+  const std::string order = root.attribute("byte_order").value_or("LittleEndian");
+  if (order != "LittleEndian" && order != "BigEndian")
+    throw Problem("byte_order = \"" + printable(order) + "\": it must be LittleEndian or BigEndian");
+  f.bigEndian = order == "BigEndian";
+  const std::string headerType = root.attribute("header_type").value_or("UInt32");
+  if (headerType != "UInt32" && headerType != "UInt64")
+    throw Problem("header_type = \"" + printable(headerType) + "\": it must be UInt32 or UInt64");
+  f.wordBytes = headerType == "UInt64" ? 8 : 4;
+  const std::string compressor = root.attribute("compressor").value_or("");
+  if (!compressor.empty() && compressor != "vtkZLibDataCompressor" && compressor != "vtkLZ4DataCompressor" &&
+      compressor != "vtkLZMADataCompressor")
+    throw Problem("compressor = \"" + printable(compressor) +
+                  "\": it must be vtkZLibDataCompressor, vtkLZ4DataCompressor, vtkLZMADataCompressor or none");
+  f.compressor = compressor;
+
+  const Element& poly = *onlyChild(h, root, "PolyData", true, "<VTKFile>");
+  const Element& piece = *onlyChild(h, poly, "Piece", true, "<PolyData>");
+  Layout L;
+  L.points = parseCount(piece.attribute("NumberOfPoints"), "NumberOfPoints", kMaxCount);
+  if (L.points == 0) throw Problem("holds no particles (NumberOfPoints = 0)");
+  const Element* points = onlyChild(h, piece, "Points", false, "<Piece>");
+  if (!points) throw Problem("has no <Points> element: it holds no particle positions");
+  if (points->children.size() != 1 || h.elements[static_cast<std::size_t>(points->children[0])].name != "DataArray")
+    throw Problem("its <Points> element must hold exactly one DataArray");
+  std::map<std::string, std::uint64_t> cells;
+  std::uint64_t allCells = 0;
+  for (const char* kind : {"Verts", "Lines", "Strips", "Polys"}) {
+    const std::string key = std::string("NumberOf") + kind;
+    cells[kind] = piece.attribute(key) ? parseCount(piece.attribute(key), key, kMaxCount) : 0;
+    allCells += cells[kind];
+  }
+
+  struct CellArrays {
+    std::optional<Stored> offsets;
+    std::uint64_t offsetBytes = 0;
+    std::optional<std::uint64_t> connectivity;  // values
+  };
+  std::map<std::string, CellArrays> cellArrays;
+
+  // Every DataArray: type, components, where its data are, and their size.
+  for (const Element& e : h.elements) {
+    if (e.name == "Array") throw Problem("holds an <Array> element (string data), which sph does not read");
+    if (e.name != "DataArray") continue;
+    const std::string name = e.attribute("Name").value_or("");
+    const std::string what = "array \"" + printable(name) + "\"";
+    const std::string arrayType = e.attribute("type").value_or("");
+    const std::uint64_t bytes = typeSize(arrayType);
+    if (bytes == 0)
+      throw Problem(what + " has type \"" + printable(arrayType) +
+                    "\": it must be Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32 or Float64");
+    const std::uint64_t components =
+        e.attribute("NumberOfComponents") ? parseCount(e.attribute("NumberOfComponents"), what + ": NumberOfComponents", kMaxComponents) : 1;
+    if (components == 0) throw Problem(what + ": NumberOfComponents = 0: it must be 1 to " + std::to_string(kMaxComponents));
+    const std::string format = e.attribute("format").value_or("");
+    if (format != "appended")
+      throw Problem(what + " is stored as format = \"" + printable(format) +
+                    "\": sph reads appended binary data (as sph and ParaView write them)");
+    if (!h.hasAppendedData || h.appendedEncoding != "raw")
+      throw Problem("its appended data are not raw binary (encoding = \"" + printable(h.appendedEncoding) +
+                    "\"): sph reads encoding = \"raw\", as sph and ParaView write them");
+    const std::uint64_t offset = parseCount(e.attribute("offset"), what + ": offset", f.size);
+    const Stored data = stored(f, h.appendedStart + offset, what);
+
+    // What the counts in the header say the array must hold.
+    const std::string parent = e.parent >= 0 ? h.elements[static_cast<std::size_t>(e.parent)].name : "";
+    std::optional<std::uint64_t> tuples;
+    std::string because;
+    if (parent == "Points" || parent == "PointData") {
+      tuples = L.points;
+      because = "NumberOfPoints = " + std::to_string(L.points);
+    } else if (parent == "CellData") {
+      tuples = allCells;
+      because = "the number of cells, " + std::to_string(allCells) + ",";
+    } else if (parent == "FieldData") {
+      tuples = parseCount(e.attribute("NumberOfTuples"), what + ": NumberOfTuples", kMaxCount);
+      because = "NumberOfTuples = " + std::to_string(*tuples);
+    } else if (cells.count(parent) && name == "offsets") {
+      tuples = cells[parent];
+      because = "NumberOf" + parent + " = " + std::to_string(*tuples);
+    }
+    if (tuples && data.bytes != *tuples * components * bytes)
+      throw Problem(what + " holds " + std::to_string(data.bytes) + " bytes, but " + because + " with " +
+                    std::to_string(components) + " " + arrayType + " components needs " +
+                    std::to_string(*tuples * components * bytes) + " (a damaged file?)");
+    if (data.bytes % bytes != 0) throw Problem(what + " holds " + std::to_string(data.bytes) + " bytes, not whole values");
+
+    // The arrays sph uses.
+    auto require = [&](bool ok, const std::string& allowed) {
+      if (!ok)
+        throw Problem(what + " has type " + arrayType + " and " + std::to_string(components) +
+                      " component(s): it must have " + allowed);
+    };
+    if (parent == "Points") require(isFloatType(arrayType) && components == 3, "type Float32 or Float64 and 3 components");
+    if (parent == "PointData") {
+      bool* seen = name == "velocity" ? &L.velocity : name == "mass" ? &L.mass : name == "id" ? &L.id : nullptr;
+      if (seen) {
+        if (*seen) throw Problem("has two point arrays named \"" + name + "\"");
+        *seen = true;
+      }
+      if (name == "velocity") require(isFloatType(arrayType) && components == 3, "type Float32 or Float64 and 3 components");
+      if (name == "mass") require(isFloatType(arrayType) && components == 1, "type Float32 or Float64 and 1 component");
+      if (name == "id") require(!isFloatType(arrayType) && components == 1, "an integer type and 1 component");
+    }
+    if (parent == "FieldData" && name == "TimeValue") {
+      require(components == 1 && *tuples >= 1, "1 component and at least 1 tuple");
+      L.time = true;
+    }
+    if (cells.count(parent) && (name == "offsets" || name == "connectivity")) {
+      require(!isFloatType(arrayType) && components == 1, "an integer type and 1 component");
+      auto& c = cellArrays[parent];
+      if (name == "offsets") c.offsets = data, c.offsetBytes = bytes;
+      else c.connectivity = data.bytes / bytes;
+    }
+  }
+
+  // VTK sizes a cell connectivity array by the last cell offset, as stored:
+  // that must not exceed what the connectivity array holds.
+  for (const auto& [kind, count] : cells) {
+    const CellArrays& c = cellArrays[kind];
+    if (count == 0 || !c.offsets || !c.connectivity) continue;  // VTK reports missing arrays
+    const std::string what = "the cell offsets of <" + kind + ">";
+    const std::uint64_t last = lastValue(f, *c.offsets, c.offsetBytes, what);
+    if (last > *c.connectivity)
+      throw Problem(what + " end at " + std::to_string(last) + ", but its connectivity holds " +
+                    std::to_string(*c.connectivity) + " values (a damaged file?)");
+  }
+  return L;
+}
+
+// ---- Reading with VTK, its messages captured ----
+
+// Swallows VTK's messages and keeps the first error.
+class CapturingOutputWindow : public vtkOutputWindow {
+ public:
+  static CapturingOutputWindow* New();
+  vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow)
+  void DisplayText(const char*) override {}
+  void DisplayErrorText(const char* text) override {
+    if (firstError.empty() && text) firstError = text;
+  }
+  void DisplayWarningText(const char*) override {}
+  void DisplayGenericWarningText(const char*) override {}
+  void DisplayDebugText(const char*) override {}
+  std::string firstError;
+};
+vtkStandardNewMacro(CapturingOutputWindow);
+
+// While alive, VTK prints nothing (neither its output window nor vtkLogger).
+class QuietVtk {
+ public:
+  QuietVtk() : previous_(vtkOutputWindow::GetInstance()), verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
+    vtkOutputWindow::SetInstance(window_);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~QuietVtk() {
+    vtkOutputWindow::SetInstance(previous_);
+    vtkLogger::SetStderrVerbosity(verbosity_);
+  }
+  QuietVtk(const QuietVtk&) = delete;
+  QuietVtk& operator=(const QuietVtk&) = delete;
+
+  // Throws the first error VTK reported, if any, as one line.
+  void check() const {
+    std::string text = window_->firstError;
+    if (text.empty()) return;
+    // "ERROR: In file, line N\nClass (0x...): message\n\n": keep the message.
+    if (text.rfind("ERROR: In ", 0) == 0 && text.find('\n') != std::string::npos) text = text.substr(text.find('\n') + 1);
+    text = text.substr(0, text.find('\n'));
+    if (const auto colon = text.find("): "); colon != std::string::npos) text = text.substr(colon + 3);
+    std::string line;
+    for (char c : text.substr(0, 200)) line += (c >= 0x20 && c < 0x7f) ? c : ' ';
+    throw Problem("VTK cannot read it: " + line);
+  }
+
+ private:
+  vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkNew<CapturingOutputWindow> window_;
+  vtkLogger::Verbosity verbosity_;
+};
+
+VtpParticles readChecked(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw Problem("does not exist or is not a file");
+  QuietVtk quiet;
+  const Layout L = checkLayout(path);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  quiet.check();
+  vtkDataArraySelection* arrays = reader->GetPointDataArraySelection();
+  arrays->DisableAllArrays();
+  for (const char* name : {"velocity", "mass", "id"}) arrays->EnableArray(name);
+  reader->GetCellDataArraySelection()->DisableAllArrays();
+  reader->Update();
+  quiet.check();
+
+  vtkPolyData* poly = reader->GetOutput();
+  const vtkIdType n = poly && poly->GetPoints() ? poly->GetNumberOfPoints() : 0;
+  if (static_cast<std::uint64_t>(n) != L.points)
+    throw Problem("VTK read " + std::to_string(n) + " points from it, but NumberOfPoints = " + std::to_string(L.points));
+  const auto count = static_cast<std::size_t>(n);
+  vtkPointData* pd = poly->GetPointData();
+  auto pointArray = [&](const char* name, int components) {
+    vtkDataArray* a = pd->GetArray(name);
+    if (!a || a->GetNumberOfTuples() != n || a->GetNumberOfComponents() != components)
+      throw Problem("VTK did not read its point array \"" + std::string(name) + "\" in full");
+    return a;
+  };
+  auto finite = [](const std::array<Real, 3>& v) {
+    return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+  };
+
+  VtpParticles out;
+  out.x.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    poly->GetPoint(static_cast<vtkIdType>(i), out.x[i].data());
+    if (!finite(out.x[i])) throw Problem("particle " + std::to_string(i) + " has a position that is not finite");
+  }
+  if (L.velocity) {
+    vtkDataArray* v = pointArray("velocity", 3);
+    out.hasVelocity = true;
+    out.v.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      v->GetTuple(static_cast<vtkIdType>(i), out.v[i].data());
+      if (!finite(out.v[i])) throw Problem("particle " + std::to_string(i) + " has a velocity that is not finite");
+    }
+  }
+  if (L.mass) {
+    vtkDataArray* m = pointArray("mass", 1);
+    out.m.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      out.m[i] = m->GetTuple1(static_cast<vtkIdType>(i));
+      if (!(std::isfinite(out.m[i]) && out.m[i] > 0))
+        throw Problem("particle " + std::to_string(i) + " has mass " + number(out.m[i]) +
+                      ": masses must be finite and > 0");
+    }
+  }
+  if (L.id) {
+    vtkDataArray* id = pointArray("id", 1);
+    out.id.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      bool valid = false;
+      out.id[i] = id->GetVariantValue(static_cast<vtkIdType>(i)).ToTypeInt64(&valid);
+      if (!valid) throw Problem("particle " + std::to_string(i) + " has an id that is not a 64-bit integer");
+    }
+    std::vector<std::int64_t> sorted = out.id;
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+      throw Problem("id " + std::to_string(*twice) + " appears more than once: ids must be unique");
+  }
+  if (L.time) {
+    vtkDataArray* t = poly->GetFieldData()->GetArray("TimeValue");
+    if (!t || t->GetNumberOfTuples() < 1) throw Problem("VTK did not read its TimeValue");
+    out.time = t->GetTuple1(0);
+    if (!(std::isfinite(out.time) && out.time >= 0))
+      throw Problem("TimeValue = " + number(out.time) + ": it must be finite and >= 0");
+  }
+  return out;
+}
+
+}  // namespace
+
+VtpParticles readVtp(const std::string& path) {
+  try {
+    return readChecked(path);
+  } catch (const Problem& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error(path + ": not enough memory to read it");
+  } catch (const std::exception& e) {  // anything else VTK or the library throws
+    throw std::runtime_error(path + " cannot be read: " + e.what());
+  }
+}
+
+}  // namespace sph
