@@ -10,7 +10,9 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkTypeInt64Array.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <malloc.h>
@@ -38,6 +40,17 @@ vtkNew<vtkDoubleArray> vectorArray(const char* name, const std::vector<Vec<D>>& 
 
 vtkNew<vtkDoubleArray> scalarArray(const char* name, const std::vector<Real>& s) {
   vtkNew<vtkDoubleArray> arr;
+  arr->SetName(name);
+  arr->SetNumberOfValues(static_cast<vtkIdType>(s.size()));
+  for (std::size_t i = 0; i < s.size(); ++i) arr->SetValue(static_cast<vtkIdType>(i), s[i]);
+  return arr;
+}
+
+// Integer fields: id as Int64, kind as UInt8.
+template <class T>
+vtkSmartPointer<vtkDataArray> integerArray(const char* name, const std::vector<T>& s) {
+  using Array = std::conditional_t<std::is_same_v<T, std::uint8_t>, vtkUnsignedCharArray, vtkTypeInt64Array>;
+  auto arr = vtkSmartPointer<Array>::New();
   arr->SetName(name);
   arr->SetNumberOfValues(static_cast<vtkIdType>(s.size()));
   for (std::size_t i = 0; i < s.size(); ++i) arr->SetValue(static_cast<vtkIdType>(i), s[i]);
@@ -101,17 +114,15 @@ void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo
   vtkNew<vtkPolyData> poly;
   poly->SetPoints(points);
   poly->SetVerts(verts);
+  // Every allocated field of the table that has a snapshot name.
   vtkPointData* pd = poly->GetPointData();
-  pd->AddArray(vectorArray<D>("velocity", P.v));
-  pd->AddArray(vectorArray<D>("acceleration", P.a));
-  pd->AddArray(scalarArray("density", P.rho));
-  pd->AddArray(scalarArray("pressure", P.p));
-  pd->AddArray(scalarArray("mass", P.m));
-  vtkNew<vtkTypeInt64Array> ids;
-  ids->SetName("id");
-  ids->SetNumberOfValues(n);
-  for (vtkIdType i = 0; i < n; ++i) ids->SetValue(i, P.id[static_cast<std::size_t>(i)]);
-  pd->AddArray(ids);
+  P.forEachField([&](const FieldInfo& f, const auto& field) {
+    if (f.vtkName == nullptr || field.empty()) return;
+    using T = typename std::decay_t<decltype(field)>::value_type;
+    if constexpr (std::is_same_v<T, Vec<D>>) pd->AddArray(vectorArray<D>(f.vtkName, field));
+    else if constexpr (std::is_same_v<T, Real>) pd->AddArray(scalarArray(f.vtkName, field));
+    else pd->AddArray(integerArray(f.vtkName, field));
+  });
   pd->SetActiveScalars("pressure");
 
   vtkFieldData* fd = poly->GetFieldData();
@@ -134,7 +145,7 @@ void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo
   writer->EncodeAppendedDataOff();
   writer->SetCompressorTypeToZLib();
   writer->SetCompressionLevel(1);  // doubles barely compress harder; level 1 is 3x faster
-  if (writer->Write() != 1) {
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
     throw std::runtime_error("cannot write " + path);

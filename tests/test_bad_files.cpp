@@ -420,11 +420,10 @@ BOOST_AUTO_TEST_CASE(a_failed_vtp_rename_leaves_no_temporary) {
   BOOST_TEST(!std::filesystem::exists(temporaryName(target.string())));
 }
 
-// KNOWN BUG, outside this suite's files: on a full disk vtkXMLWriter::Write()
-// still returns 1 (only GetErrorCode() says ENOSPC), so writeVtp renames the
-// damaged temporary over the snapshot instead of throwing. Drop the
-// expected_failures once writeVtp also checks writer->GetErrorCode().
-BOOST_AUTO_TEST_CASE(a_vtp_on_a_full_disk_is_an_error, *boost::unit_test::expected_failures(2)) {
+// On a full disk vtkXMLWriter::Write() still returns 1 (only GetErrorCode()
+// says ENOSPC): writeVtp checks both, so a damaged temporary is never
+// renamed over a snapshot.
+BOOST_AUTO_TEST_CASE(a_vtp_on_a_full_disk_is_an_error) {
   const auto dir = test::scratchDir("bad_files_vtp_full");
   const auto target = dir / "s_00000.vtp";
   std::filesystem::create_symlink("/dev/full", temporaryName(target.string()));
