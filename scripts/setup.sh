@@ -2,7 +2,7 @@
 # Installs the Debian packages that building, testing and rendering need.
 # Idempotent: when everything is present it only asks dpkg and returns.
 set -euo pipefail
-packages=(g++ cmake make libeigen3-dev libcli11-dev libboost-test-dev
+packages=(g++ cmake make git libeigen3-dev libcli11-dev libboost-test-dev nlohmann-json3-dev
           paraview-dev python3-paraview paraview xvfb xauth)
 missing=()
 for p in "${packages[@]}"; do

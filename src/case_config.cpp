@@ -1,5 +1,7 @@
 #include "sph/case_config.hpp"
 
+#include "sph/case_keys.hpp"
+
 #include <cmath>
 #include <initializer_list>
 #include <sstream>
@@ -28,14 +30,6 @@ void requireSize(const char* key, const std::vector<Real>& v, int dim, bool allo
     if (!std::isfinite(x)) throw CaseError(std::string(key) + " must hold finite numbers");
 }
 
-void requireChoice(const char* key, const std::string& value, std::initializer_list<const char*> allowed) {
-  std::string list;
-  for (const char* a : allowed) {
-    if (value == a) return;
-    list += std::string(list.empty() ? "" : ", ") + "\"" + a + "\"";
-  }
-  throw CaseError(std::string(key) + " = \"" + value + "\" is not known: allowed are " + list);
-}
 
 }  // namespace
 
@@ -44,7 +38,7 @@ long stepsFor(const CaseConfig& c) {
 }
 
 void validateCase(const CaseConfig& c) {
-  requireChoice("model", c.model, {"seed_wcsph", "wcsph"});
+  checkKeyRanges(c);  // every key against its own range and choices (case_keys.cpp)
   const bool seed = c.model == "seed_wcsph";
   if (seed) {
     for (const auto& [key, value] : {std::pair<const char*, const std::string&>{"kernel", c.kernel},
@@ -58,40 +52,15 @@ void validateCase(const CaseConfig& c) {
     if (!c.integrator.empty() && c.integrator != "leap_frog")
       throw CaseError("integrator = \"" + c.integrator + "\": model seed_wcsph uses leap_frog only");
   }
-  if (!c.kernel.empty()) requireChoice("kernel", c.kernel, {"cubic_spline", "wendland_c2", "gaussian", "muller"});
-  if (!c.eos.empty()) requireChoice("eos", c.eos, {"linear", "linear_clamped", "tait", "polytropic"});
-  if (!c.viscosity.empty()) requireChoice("viscosity", c.viscosity, {"none", "laplacian", "monaghan"});
-  if (!c.integrator.empty())
-    requireChoice("integrator", c.integrator, {"leap_frog", "symplectic_euler", "rk4", "euler"});
-  if (c.eos == "tait") {
-    requirePositive("c0", c.c0);
-    requirePositive("gamma", c.gamma);
-  }
-  if (c.eos == "polytropic") requirePositive("polytropic_index", c.polytropicIndex);
-  if (!(c.alpha >= 0 && std::isfinite(c.alpha) && c.beta >= 0 && std::isfinite(c.beta)))
-    throw CaseError("alpha = " + fmt(c.alpha) + ", beta = " + fmt(c.beta) + " are out of range: both must be finite and >= 0");
-  if (!(c.xsph >= 0 && c.xsph <= 1)) throw CaseError("xsph = " + fmt(c.xsph) + " is out of range: it must be in [0, 1]");
-  if (!(c.damping >= 0 && std::isfinite(c.damping))) throw CaseError("damping = " + fmt(c.damping) + " is out of range: it must be >= 0");
-  if (!(c.cfl >= 0 && c.cfl <= 2)) throw CaseError("cfl = " + fmt(c.cfl) + " is out of range: it must be in [0, 2] (0: fixed dt)");
-  if (c.dimension != 2 && c.dimension != 3)
-    throw CaseError("dimension = " + std::to_string(c.dimension) + " is out of range: it must be 2 or 3");
-  if (c.name.empty() || c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
-    throw CaseError("name = \"" + c.name + "\" is not allowed: use letters, digits, '_', '-' and '.'");
-  requirePositive("h", c.h);
-  requirePositive("k", c.k);
-  requirePositive("rho0", c.rho0);
-  if (!(c.mu >= 0) || !std::isfinite(c.mu))
-    throw CaseError("mu = " + fmt(c.mu) + " is out of range: it must be >= 0");
-  if (!std::isfinite(c.g)) throw CaseError("g must be a finite number");
-  if (!(c.restitution >= 0 && c.restitution <= 1))
-    throw CaseError("restitution = " + fmt(c.restitution) + " is out of range: it must be in [0, 1]");
-  requirePositive("dt", c.dt);
-  requirePositive("end_time", c.endTime);
-  if (c.outputEvery < 1)
-    throw CaseError("output_every = " + std::to_string(c.outputEvery) + " is out of range: it must be >= 1");
-  if (c.threads < 0 || c.threads > kMaxThreads)
-    throw CaseError("threads = " + std::to_string(c.threads) + " is out of range: it must be in [0, " +
-                    std::to_string(kMaxThreads) + "] (0: all cores)");
+  if (c.eos == "tait") requirePositive("c0", c.c0);
+  if (c.name.empty() || c.name == "." || c.name == ".." ||
+      c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
+    throw CaseError("name = \"" + c.name + "\" is not allowed: use letters, digits, '_', '-' and '.' (not . or ..)");
+  requestedThreads(c);
+  if (c.isGiven("output_every") && c.isGiven("output_interval"))
+    throw CaseError("output_every and output_interval are both given: choose one (steps or seconds of simulated time)");
+  if (c.isGiven("output_interval") && !(c.outputInterval > 0))
+    throw CaseError("output_interval = " + fmt(c.outputInterval) + " is out of range: it must be > 0 (seconds of simulated time)");
   if (c.endTime / c.dt > kMaxSteps)
     throw CaseError("end_time / dt = " + fmt(c.endTime / c.dt) + " steps is out of range: at most " +
                     fmt(kMaxSteps) + " (raise dt or lower end_time)");
@@ -115,10 +84,17 @@ void validateCase(const CaseConfig& c) {
   }
   requireSize("domain_min", c.domainMin, D, false);
   requireSize("domain_max", c.domainMax, D, false);
-  for (int d = 0; d < D; ++d)
-    if (!(c.domainMax[static_cast<std::size_t>(d)] > c.domainMin[static_cast<std::size_t>(d)] + 2 * c.h))
+  for (int d = 0; d < D; ++d) {
+    const Real extent = c.domainMax[static_cast<std::size_t>(d)] - c.domainMin[static_cast<std::size_t>(d)];
+    if (!(extent > 2 * c.h))
       throw CaseError("domain_max must exceed domain_min by more than 2 h in every dimension "
                       "(walls keep particles h away from each wall)");
+    // The neighbour grid has cells of the support (at most 3h): bounded cell
+    // indices keep its 64-bit hashing exact.
+    if (extent / c.h > kMaxCellsPerAxis)
+      throw CaseError("h = " + fmt(c.h) + " is out of range for this domain: the domain is " + fmt(extent) +
+                      " m wide, more than " + fmt(kMaxCellsPerAxis) + " h (raise h or shrink the domain)");
+  }
   requireSize("block_min", c.blockMin, D, true);
   requireSize("block_max", c.blockMax, D, true);
   requireSize("disc_center", c.discCenter, D, true);
@@ -137,7 +113,6 @@ void validateCase(const CaseConfig& c) {
     throw CaseError("points has " + std::to_string(c.points.size()) +
                     " values: it needs a multiple of " + std::to_string(D) + " (x y" +
                     (D == 3 ? " z" : "") + " per point)");
-  if (c.spacing < 0) throw CaseError("spacing = " + fmt(c.spacing) + " is out of range: it must be > 0");
   // Generated particle count, before anything is allocated: indices are
   // 32-bit and memory is finite.
   double count = static_cast<double>(c.points.size() / static_cast<std::size_t>(D));
@@ -153,6 +128,59 @@ void validateCase(const CaseConfig& c) {
   if (count > kMaxParticles)
     throw CaseError(std::string(countKey) + " gives about " + fmt(count) + " particles: at most " +
                     fmt(kMaxParticles) + " are allowed");
+}
+
+int requestedThreads(const CaseConfig& c) {
+  if (c.threads == "auto") return 0;
+  std::size_t used = 0;
+  long n = -1;
+  try {
+    n = std::stol(c.threads, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != c.threads.size() || n < 1 || n > kMaxThreads)
+    throw CaseError("threads = " + c.threads + " is out of range: it must be auto or a count from 1 to " +
+                    std::to_string(kMaxThreads));
+  return static_cast<int>(n);
+}
+
+std::vector<std::string> unusedKeyNotes(const CaseConfig& given) {
+  const CaseConfig c = withDefaults(given);
+  std::vector<std::string> notes;
+  auto note = [&](const char* key, const std::string& why) {
+    if (c.isGiven(key)) notes.push_back(std::string("key '") + key + "' is not used: " + why);
+  };
+  // Keys a method owns are used when that method is chosen.
+  auto owned = [&](const char* key, const std::vector<std::string>& owners, const std::string& chosen,
+                   const char* category) {
+    for (const auto& o : owners)
+      if (o == chosen) return;
+    std::string list;
+    for (const auto& o : owners) list += (list.empty() ? "" : " or ") + o;
+    note(key, std::string(category) + " is " + (chosen.empty() ? "none" : chosen) + "; it applies to " +
+                  category + " " + list);
+  };
+  const bool seed = c.model == "seed_wcsph";
+  if (seed) {
+    for (const char* key : {"gamma", "c0", "polytropic_index", "alpha", "beta"})
+      note(key, "model seed_wcsph has its own fixed terms; it applies to model wcsph");
+  } else {
+    for (const char* key : {"gamma", "c0"}) owned(key, {"tait"}, c.eos, "eos");
+    owned("polytropic_index", {"polytropic"}, c.eos, "eos");
+    if (c.eos == "tait") note("k", "eos tait uses c0 and gamma");
+    for (const char* key : {"alpha", "beta"}) owned(key, {"monaghan"}, c.viscosity, "viscosity");
+    if (c.viscosity != "laplacian") note("mu", "viscosity is " + c.viscosity + "; it applies to viscosity laplacian");
+  }
+  if (!c.walls) note("restitution", "there are no walls (walls = false)");
+  if (c.starMass == 0)
+    for (const char* key : {"star_radius", "star_particles", "star_center", "star_velocity", "seed"})
+      note(key, "there is no toy star (star_mass = 0)");
+  if (!c.particleFile.empty())
+    for (const char* key : {"block_min", "block_max", "disc_center", "disc_radius", "points", "spacing", "velocity"})
+      note(key, "particle_file " + c.particleFile + " replaces the generators");
+  if (c.cfl == 0 && c.isGiven("cfl")) note("cfl", "cfl = 0 is a fixed time step");
+  return notes;
 }
 
 CaseConfig withDefaults(CaseConfig c) {

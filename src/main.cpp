@@ -6,6 +6,8 @@
 // CLI11 calls through the config-formatter hook (CaseFileFormat below).
 #include "sph/case_config.hpp"
 #include "sph/case_file.hpp"
+#include "sph/case_keys.hpp"
+#include "sph/io/run_folder.hpp"
 #include "sph/run_case.hpp"
 
 #include <CLI/CLI.hpp>
@@ -15,6 +17,8 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
+#include <variant>
 
 namespace {
 
@@ -23,67 +27,35 @@ const char* kTopHelp =
     "Usage: sph run CASE_FILE [--output DIR] [--KEY VALUE ...]\n"
     "Every key of a case file is also a flag that overrides it.";
 
+// One CLI11 option per row of the key table (case_keys.hpp), in its topic
+// group; a bool key is a flag with a --no- form.
 void declareKeys(CLI::App& run, sph::CaseConfig& c) {
-  // One line per key: group, flag, field, "meaning [unit; allowed range]".
-  auto key = [&](const char* group, const char* flag, auto& field, const char* help) {
-    run.add_option(flag, field, help)->capture_default_str()->group(group);
-  };
-  auto flag = [&](const char* group, const char* names, bool& field, const char* help) {
-    run.add_flag(names, field, help)->capture_default_str()->group(group);
-  };
-  const char* runGroup = "Run";
-  key(runGroup, "--output", c.output, "Output folder [default: runs/<name>]");
-  key(runGroup, "--name", c.name, "Run name: <name>.pvd, <name>_NNNNN.vtp [letters, digits, _ - .; default: case file name]");
-  key(runGroup, "--model", c.model, "Physics model [seed_wcsph | wcsph]");
-  key(runGroup, "--dimension", c.dimension, "Spatial dimension [2 or 3]");
-  key(runGroup, "--threads", c.threads, "OpenMP threads [0 to 1024; 0: all cores]");
-  flag(runGroup, "--progress,!--no-progress", c.progress, "Progress line on a terminal");
+  for (const sph::KeySpec& k : sph::caseKeys()) {
+    const std::string flag = std::string("--") + k.name;
+    const std::string help = sph::keyHelp(k);
+    const std::string group = sph::groupName(k.group);
+    std::visit(
+        [&](auto member) {
+          auto& field = c.*member;
+          using T = std::decay_t<decltype(field)>;
+          CLI::Option* o;
+          if constexpr (std::is_same_v<T, bool>)
+            o = run.add_flag(flag + ",!--no-" + k.name, field, help);
+          else
+            o = run.add_option(flag, field, help);
+          if (k.defaultText == nullptr) o->capture_default_str();
+          o->group(group);
+        },
+        k.field);
+  }
+}
 
-  const char* physics = "Physics and numerics";
-  key(physics, "--h", c.h, "Smoothing length h [m; > 0]: the seed scheme's support radius; kernel support "
-                           "is 2h (cubic, Wendland), 3h (Gaussian), h (Mueller)");
-  key(physics, "--k", c.k, "EOS stiffness k: p = k (rho - rho0), or k rho^(1+1/n) polytropic [> 0]");
-  key(physics, "--rho0", c.rho0, "Rest density rho0 [kg/m^D; > 0]");
-  key(physics, "--mu", c.mu, "Dynamic viscosity mu [>= 0; 0 switches viscosity off]");
-  key(physics, "--g", c.g, "Gravity g along -y (2D) or -z (3D) [m/s^2; 0 switches gravity off]");
-  key(physics, "--restitution", c.restitution, "Wall restitution e: normal velocity -> -e times itself [0 to 1]");
-  flag(physics, "--walls,!--no-walls", c.walls, "Damped reflecting walls on the domain box");
-  key(physics, "--integrator", c.integrator, "Time integrator [leap_frog (default) | symplectic_euler | rk4 | euler]");
-  key(physics, "--cfl", c.cfl, "Adaptive dt with this CFL factor (dt is then the largest step) [0 to 2; 0: fixed dt]");
-  key(physics, "--dt", c.dt, "Time step [s; > 0]");
-  key(physics, "--end_time", c.endTime, "Simulated time [s; > 0]");
-  key(physics, "--output_every", c.outputEvery, "Write a snapshot every N steps (and the last) [>= 1]");
-
-  const char* wcsph = "wcsph model";
-  key(wcsph, "--kernel", c.kernel, "Kernel [cubic_spline (default) | wendland_c2 | gaussian | muller]");
-  key(wcsph, "--eos", c.eos, "Equation of state [linear (default) | linear_clamped | tait | polytropic]");
-  key(wcsph, "--viscosity", c.viscosity, "Viscosity [laplacian (default, uses mu) | monaghan | none]");
-  key(wcsph, "--gamma", c.gamma, "Tait exponent [> 0]");
-  key(wcsph, "--c0", c.c0, "Tait sound speed [m/s; > 0 with eos = tait]");
-  key(wcsph, "--polytropic_index", c.polytropicIndex, "n in p = k rho^(1 + 1/n) [> 0]");
-  key(wcsph, "--alpha", c.alpha, "Monaghan viscosity alpha [>= 0]");
-  key(wcsph, "--beta", c.beta, "Monaghan viscosity beta [>= 0]");
-  key(wcsph, "--xsph", c.xsph, "XSPH epsilon [0 to 1; 0: off]");
-  key(wcsph, "--damping", c.damping, "Linear damping nu in a = -nu v [1/s; >= 0; 0: off]");
-  key(wcsph, "--star_mass", c.starMass, "Toy star mass M [> 0; 0: no star]");
-  key(wcsph, "--star_radius", c.starRadius, "Toy star radius R [m; > 0]");
-  key(wcsph, "--star_particles", c.starParticles, "Particles per star [>= 1 each]");
-  key(wcsph, "--star_center", c.starCenter, "Star centres [m; D values per star] (the attraction -lambda x always pulls to the origin)");
-  key(wcsph, "--star_velocity", c.starVelocity, "Star velocities [m/s; D values per star]");
-  key(wcsph, "--seed", c.seed, "Random seed of the star particles");
-
-  const char* particles = "Domain and particles";
-  key(particles, "--domain_min", c.domainMin, "Lower domain corner, walls [m; D values]");
-  key(particles, "--domain_max", c.domainMax, "Upper domain corner, walls [m; D values; > domain_min + 2h]");
-  key(particles, "--block_min", c.blockMin, "Lattice block lower corner [m; D values]");
-  key(particles, "--block_max", c.blockMax, "Lattice block upper corner [m; D values]");
-  key(particles, "--disc_center", c.discCenter, "Lattice disc (2D) or ball (3D) centre [m; D values]");
-  key(particles, "--disc_radius", c.discRadius, "Disc/ball radius [m; > 0]");
-  key(particles, "--spacing", c.spacing, "Lattice spacing dx of block and disc [m; > 0]");
-  key(particles, "--velocity", c.velocity, "Initial velocity of generated particles [m/s; D values; default 0]");
-  key(particles, "--points", c.points, "Explicit particles: x y [z] per point [m]");
-  key(particles, "--particle_file", c.particleFile,
-      "Particles from a CSV (header x,y[,z][,vx,vy[,vz]]) or a .vtp written by sph");
+// The keys the case file or the command line set.
+std::set<std::string> givenKeys(const CLI::App& run) {
+  std::set<std::string> given;
+  for (const sph::KeySpec& k : sph::caseKeys())
+    if (run.count(std::string("--") + k.name) > 0) given.insert(k.name);
+  return given;
 }
 
 // CLI11 reads the case file through this: sph's strict reader instead of
@@ -156,10 +128,45 @@ std::string explain(const CLI::ParseError& e, const CLI::App& run, const CaseFil
   return what;
 }
 
+// The keys given on the command line itself (--key, --key=value, --no-key).
+std::set<std::string> commandLineKeys(int argc, char** argv) {
+  std::set<std::string> keys;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a.rfind("--", 0) != 0) continue;
+    a = a.substr(2, a.find('=') == std::string::npos ? std::string::npos : a.find('=') - 2);
+    if (a.rfind("no-", 0) == 0 && sph::findKey(a.substr(3))) a = a.substr(3);
+    if (sph::findKey(a)) keys.insert(a);
+  }
+  return keys;
+}
+
+// The folder of --resume DIR (or --resume=DIR), "" without one.
+std::string resumeFolder(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--resume" && i + 1 < argc) return argv[i + 1];
+    if (a.rfind("--resume=", 0) == 0) return a.substr(9);
+  }
+  return "";
+}
+
 // `sph run ...` is parsed by an App of its own: CLI11 reads config files for
 // the top-level App only, and the case file is that App's config file.
+// `sph run --resume DIR` takes DIR/run.case, the resolved case of that run,
+// as its case file.
 int runCommand(int argc, char** argv) {
   sph::CaseConfig c;
+  const std::string resume = resumeFolder(argc, argv);
+  std::vector<std::string> args(argv, argv + argc);
+  if (!resume.empty()) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(std::filesystem::path(resume) / "run.json", ec))
+      return fail("resume: " + resume + " holds no run to resume (no run.json)");
+    args.insert(args.begin() + 1, (std::filesystem::path(resume) / "run.case").string());
+  }
+  std::vector<char*> argp;
+  for (auto& a : args) argp.push_back(a.data());
   CLI::App run("Run a case file. Every key of the case file is also a flag that overrides it.",
                "sph run");
   run.set_config("case_file", "", "Case file to run (see cases/)", true);
@@ -168,7 +175,7 @@ int runCommand(int argc, char** argv) {
   run.config_formatter(format);
   declareKeys(run, c);
   try {
-    run.parse(argc, argv);
+    run.parse(static_cast<int>(argp.size()), argp.data());
   } catch (const CLI::Success& e) {
     return run.exit(e);
   } catch (const CLI::ParseError& e) {
@@ -178,7 +185,26 @@ int runCommand(int argc, char** argv) {
     return fail("case file " + run.get_config_ptr()->as<std::string>() + line + ": " + e.what());
   }
   c.caseFile = run.get_config_ptr()->as<std::string>();
-  if (run.count("--name") == 0) c.name = sph::defaultRunName(c.caseFile);
+  c.commandLine.assign(argv, argv + argc);
+  c.commandLine.insert(c.commandLine.begin(), "sph");
+  if (!resume.empty()) {
+    // The run's own record says which keys its case set; flags add to them.
+    try {
+      const sph::RunRecord record = sph::readRunRecord(resume);
+      c.given.insert(record.given.begin(), record.given.end());
+      c.caseFile = record.caseFile;
+    } catch (const std::exception& e) {
+      return fail(std::string("resume: ") + e.what());
+    }
+    const auto flags = commandLineKeys(argc, argv);
+    c.given.insert(flags.begin(), flags.end());
+    c.given.erase("resume");
+    c.output = resume;
+    c.resume = resume;
+  } else {
+    c.given = givenKeys(run);
+    if (run.count("--name") == 0) c.name = sph::defaultRunName(c.caseFile);
+  }
   if (c.output.empty()) c.output = (std::filesystem::path("runs") / c.name).string();
   if (c.dimension == 3) return sph::runCase<3>(c, std::cout, std::cerr);
   if (c.dimension == 2) return sph::runCase<2>(c, std::cout, std::cerr);

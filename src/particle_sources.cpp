@@ -248,6 +248,56 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   return s;
 }
 
+template <int D>
+InitialState<D> resumeState(const std::string& snapshot) {
+  VtpParticles f;
+  try {
+    f = readVtp(snapshot);
+  } catch (const std::exception& e) {
+    throw CaseError(std::string("resume: ") + e.what());
+  }
+  const std::size_t n = f.x.size();
+  auto need = [&](bool ok, const char* what) {
+    if (!ok) throw CaseError("resume: " + snapshot + " has no " + what + " array (not a snapshot sph wrote?)");
+  };
+  need(f.hasVelocity, "velocity");
+  need(!f.m.empty(), "mass");
+  need(!f.id.empty(), "id");
+  need(!f.a.empty(), "acceleration");
+  need(!f.rho.empty(), "density");
+  InitialState<D> s;
+  Particles<D>& P = s.particles;
+  auto vec = [](const std::array<Real, 3>& a) {
+    Vec<D> v;
+    for (int d = 0; d < D; ++d) v[d] = a[static_cast<std::size_t>(d)];
+    return v;
+  };
+  std::size_t fluid = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    addParticle(P, vec(f.x[i]), vec(f.v[i]), f.m[i]);
+    P.id.back() = f.id[i];
+    const bool wall = !f.kind.empty() && f.kind[i] == kWall;
+    if (wall && fluid == n) fluid = i;
+    if (!wall && fluid < n)
+      throw CaseError("resume: " + snapshot + " lists a fluid particle after a wall particle (not a snapshot sph wrote?)");
+  }
+  P.resize(n, fluid);
+  for (std::size_t i = 0; i < n; ++i) {
+    P.a[i] = vec(f.a[i]);
+    P.rho[i] = f.rho[i];
+  }
+  // The rates the integrator carries into its next step.
+  if (!f.drho.empty()) P.drho = f.drho;
+  if (!f.vXsph.empty())
+    for (const auto& w : f.vXsph) P.vXsph.push_back(vec(w));
+  s.massesGiven = true;
+  s.startTime = f.time;
+  s.startStep = f.step;
+  return s;
+}
+
+template InitialState<2> resumeState<2>(const std::string&);
+template InitialState<3> resumeState<3>(const std::string&);
 template InitialState<2> buildInitialState<2>(const CaseConfig&);
 template InitialState<3> buildInitialState<3>(const CaseConfig&);
 

@@ -1,23 +1,34 @@
+// One whole run: check everything, prepare the output folder, step, write
+// snapshots, the .pvd series, energy.csv, timestep.csv and run.json, and
+// print a summary. See run_case.hpp for the exit codes.
 #include "sph/run_case.hpp"
 
 #include "sph/case_file.hpp"
+#include "sph/case_keys.hpp"
 #include "sph/io/atomic_file.hpp"
+#include "sph/io/number_format.hpp"
 #include "sph/io/pvd_series.hpp"
+#include "sph/io/run_folder.hpp"
 #include "sph/io/vtp_io.hpp"
-#include "sph/particle_sources.hpp"
 #include "sph/model_registry.hpp"
+#include "sph/particle_sources.hpp"
+#include "sph/run_signals.hpp"
 #include "sph/scene.hpp"
+#include "sph/thread_tuner.hpp"
 #include "sph/toy_star.hpp"
+#include "sph/version.hpp"
 
 #include <omp.h>
 #include <unistd.h>
 
 #include <chrono>
-#include <new>
 #include <cmath>
 #include <cstdio>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <new>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -27,24 +38,63 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::string formatDuration(double s) {
   char buf[32];
+  if (!std::isfinite(s)) return "?";
   if (s < 120) std::snprintf(buf, sizeof buf, "%.0f s", s);
-  else std::snprintf(buf, sizeof buf, "%.0f min", s / 60);
+  else if (s < 7200) std::snprintf(buf, sizeof buf, "%.0f min", s / 60);
+  else std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
   return buf;
 }
 
-// Snapshots, the .pvd series and energy.csv of one run.
+// Lines of a CSV file whose first column (a number) passes keep(), header
+// kept; "" if the file cannot be read.
+template <class Keep>
+std::string csvLinesWhere(const std::filesystem::path& path, Keep keep) {
+  std::ifstream in(path);
+  std::string out, line;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (header) {
+      out += line + "\n";
+      header = false;
+      continue;
+    }
+    try {
+      if (keep(std::stod(line.substr(0, line.find(','))))) out += line + "\n";
+    } catch (const std::exception&) {
+    }
+  }
+  return out;
+}
+
+// Snapshots, the .pvd series, energy.csv and timestep.csv of one run; files
+// are replaced atomically, and every file written is recorded in run.json.
 template <int D>
 class RunOutput {
  public:
-  RunOutput(const std::filesystem::path& dir, const std::string& name, SnapshotInfo info)
-      : dir_(dir), name_(name), info_(info), series_((dir / (name + ".pvd")).string()) {
+  RunOutput(const std::filesystem::path& dir, const std::string& name, SnapshotInfo info, RunRecord& record,
+            bool adaptive)
+      : dir_(dir), name_(name), info_(info), series_((dir / (name + ".pvd")).string()), record_(record),
+        adaptive_(adaptive) {
     energy_ = "time,kinetic,potential,total\n";
+    if (adaptive_) dtLog_ = "step,time,dt,criterion\n";
+  }
+
+  // Continue a run's series after its snapshot at step `step`, time `time`.
+  void resumeAfter(long step, Real time) {
+    series_ = PvdSeries::load(series_.path());
+    count_ = static_cast<long>(series_.entries().size());
+    lastStep_ = step;
+    lastTime_ = time;
+    energy_ = csvLinesWhere(dir_ / "energy.csv", [&](double t) { return t <= time; });
+    if (energy_.empty()) energy_ = "time,kinetic,potential,total\n";
+    if (adaptive_) {
+      dtLog_ = csvLinesWhere(dir_ / "timestep.csv", [&](double s) { return s <= static_cast<double>(step); });
+      if (dtLog_.empty()) dtLog_ = "step,time,dt,criterion\n";
+    }
   }
 
   void write(const Scene<D>& scene) {
@@ -54,20 +104,40 @@ class RunOutput {
     info_.time = scene.time();
     info_.step = scene.stepIndex();
     writeVtp<D>((dir_ / vtp).string(), scene.particles(), info_);
+    record_.addFile(vtp);
     series_.add(scene.time(), scene.stepIndex(), vtp);
+    record_.addFile(name_ + ".pvd");
     const Energy e = scene.energy();
     char line[160];
-    std::snprintf(line, sizeof line, "%.10g,%.10g,%.10g,%.10g\n", scene.time(), e.kinetic,
+    std::snprintf(line, sizeof line, "%s,%.10g,%.10g,%.10g\n", shortestDecimal(scene.time()).c_str(), e.kinetic,
                   e.potential, e.total());
     energy_ += line;
     writeFileAtomically((dir_ / "energy.csv").string(), energy_);
+    record_.addFile("energy.csv");
+    flushTimeSteps();
     ++count_;
     lastStep_ = scene.stepIndex();
     lastTime_ = scene.time();
+    record_.snapshots = count_;
+    record_.lastSnapshot = vtp;
+  }
+
+  void addTimeStep(const Scene<D>& scene) {
+    if (!adaptive_) return;
+    char line[128];
+    std::snprintf(line, sizeof line, "%ld,%s,%.6g,%s\n", scene.stepIndex(), shortestDecimal(scene.time()).c_str(),
+                  scene.lastTimeStep().dt, scene.lastTimeStep().criterion);
+    dtLog_ += line;
+  }
+
+  // timestep.csv, replaced atomically like the other files.
+  void flushTimeSteps() {
+    if (!adaptive_) return;
+    writeFileAtomically((dir_ / "timestep.csv").string(), dtLog_);
+    record_.addFile("timestep.csv");
   }
 
   Real lastTime() const { return lastTime_; }
-
   long count() const { return count_; }
   long lastStep() const { return lastStep_; }
   const std::string& seriesPath() const { return series_.path(); }
@@ -77,43 +147,12 @@ class RunOutput {
   std::string name_;
   SnapshotInfo info_;
   PvdSeries series_;
-  std::string energy_;
+  RunRecord& record_;
+  bool adaptive_;
+  std::string energy_, dtLog_;
   long count_ = 0;
   long lastStep_ = -1;
   Real lastTime_ = 0;
-};
-
-// timestep.csv of an adaptive run: step, time, dt and the criterion that set
-// it, for every step; lines are buffered and appended at each snapshot.
-class TimeStepLog {
- public:
-  TimeStepLog(std::string path, bool enabled) : path_(std::move(path)), enabled_(enabled) {
-    if (enabled_) buffer_ = "step,time,dt,criterion\n";
-  }
-
-  template <class Scene>
-  void add(const Scene& scene) {
-    if (!enabled_) return;
-    char line[128];
-    std::snprintf(line, sizeof line, "%ld,%.10g,%.6g,%s\n", scene.stepIndex(), scene.time(),
-                  scene.lastTimeStep().dt, scene.lastTimeStep().criterion);
-    buffer_ += line;
-  }
-
-  void flush() {
-    if (!enabled_ || buffer_.empty()) return;
-    std::ofstream f(path_, started_ ? std::ios::app : std::ios::trunc);
-    started_ = true;
-    f << buffer_;
-    if (!f) throw std::runtime_error("cannot write " + path_);
-    buffer_.clear();
-  }
-
- private:
-  std::string path_;
-  bool enabled_;
-  bool started_ = false;
-  std::string buffer_;
 };
 
 // After a toy-star run: the radial density profile next to the analytic
@@ -122,7 +161,7 @@ class TimeStepLog {
 // is that of all particles about their centre of mass: the merged star.
 template <int D>
 void writeStarProfiles(const Scene<D>& scene, const CaseConfig& c, const std::filesystem::path& dir,
-                       std::ostream& out) {
+                       std::ostream& out, RunRecord& record) {
   const Real lambda = starLambda(c);
   const auto& P = scene.particles();
   Vec<D> centre = Vec<D>::Zero();
@@ -141,6 +180,7 @@ void writeStarProfiles(const Scene<D>& scene, const CaseConfig& c, const std::fi
     csv += line;
   }
   writeFileAtomically((dir / "star_profile.csv").string(), csv);
+  record.addFile("star_profile.csv");
   std::snprintf(line, sizeof line,
                 "  toy star         relative L2 density error inside 0.9 R: %.4f (%zu particles "
                 "inside; lambda = %.6g)\n",
@@ -150,9 +190,45 @@ void writeStarProfiles(const Scene<D>& scene, const CaseConfig& c, const std::fi
 
 std::string failureMessage(const StateFailure& f, long step, Real time) {
   std::ostringstream s;
-  s << "the run blew up at step " << step << ", t = " << time << " s: particle id " << f.id
-    << ": " << f.detail;
+  s << "the run blew up at step " << step << ", t = " << time << " s: particle id " << f.id << ": " << f.detail;
   return s.str();
+}
+
+// dt actually used: range and how often each criterion set it.
+struct TimeStepStats {
+  Real dtMin = std::numeric_limits<Real>::infinity(), dtMax = 0;
+  std::map<std::string, long> criteria;
+  void add(const TimeStepChoice& c) {
+    dtMin = std::min(dtMin, c.dt);
+    dtMax = std::max(dtMax, c.dt);
+    ++criteria[c.criterion];
+  }
+  std::string mostOften() const {
+    std::string best;
+    long n = -1;
+    for (const auto& [name, count] : criteria)
+      if (count > n) best = name, n = count;
+    return best;
+  }
+  long steps() const {
+    long n = 0;
+    for (const auto& [name, count] : criteria) n += count;
+    return n;
+  }
+};
+
+// What the run record says about the case: every key's value and the keys set.
+void describeCase(RunRecord& r, const CaseConfig& c) {
+  for (const KeySpec& k : caseKeys())
+    if (!isRunOnlyKey(k)) r.caseValues[k.name] = keyValueText(c, k);
+  r.given.assign(c.given.begin(), c.given.end());
+  r.commandLine = c.commandLine;
+  r.caseFile = c.caseFile;
+  r.dimension = c.dimension;
+  r.model = c.model;
+  r.version = SPH_VERSION;
+  r.gitCommit = gitCommit();
+  r.threadMode = c.threads;
 }
 
 }  // namespace
@@ -161,10 +237,32 @@ template <int D>
 int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   InitialState<D> init;
   CaseConfig c;
+  const bool resuming = !given.resume.empty();
+  RunRecord previous;
+  std::string resumeSnapshot;
   try {
     validateCase(given);
     c = withDefaults(given);
-    init = buildInitialState<D>(c);
+    if (resuming) {
+      previous = readRunRecord(c.output);
+      if (previous.dimension != D || previous.name != c.name)
+        throw CaseError("resume: run.json of " + c.output + " does not match its run.case");
+      const PvdSeries series = PvdSeries::load((std::filesystem::path(c.output) / (c.name + ".pvd")).string());
+      if (series.entries().empty()) throw CaseError("resume: the series of " + c.output + " has no snapshot");
+      resumeSnapshot = (std::filesystem::path(c.output) / series.entries().back().file).string();
+      init = resumeState<D>(resumeSnapshot);
+    } else {
+      init = buildInitialState<D>(c);
+    }
+    const Real t0 = init.startTime;
+    if (!(c.endTime > t0 * (1 + 1e-12)))
+      throw CaseError("end_time = " + shortestDecimal(c.endTime) + " s is not after the start, t = " +
+                      shortestDecimal(t0) + " s " +
+                      (resuming ? "(the run reached it: give --end_time T, later, to run further)"
+                                : "(of particle_file; end_time is absolute)"));
+    if ((c.endTime - t0) / c.dt > kMaxSteps)
+      throw CaseError("(end_time - start) / dt is more than " + shortestDecimal(kMaxSteps) + " steps");
+    checkOutputFolder(c.output, c.overwrite, resuming);
   } catch (const CaseError& e) {
     err << "sph: error: " << escapeControl(e.what()) << "\n";  // values are echoed: no raw control bytes
     return kBadInput;
@@ -172,22 +270,41 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     err << "sph: error: not enough memory for the particles of this case (reduce spacing, "
            "star_particles or the block/disc size)\n";
     return kBadInput;
+  } catch (const std::runtime_error& e) {
+    err << "sph: error: " << escapeControl(e.what()) << "\n";
+    return kBadInput;
   }
-  if (c.threads > 0) omp_set_num_threads(c.threads);
+  for (const std::string& note : unusedKeyNotes(c)) err << "sph: warning: " << escapeControl(note) << "\n";
+
   const std::size_t n = init.particles.size();
   const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
-
   std::size_t nearWall = 0;
-  if (c.walls)
+  if (c.walls && !resuming)
     for (const auto& x : init.particles.x)
       nearWall += ((x.array() - lo.array()).minCoeff() < c.h || (hi.array() - x.array()).minCoeff() < c.h);
 
-  const Real startTime = init.startTime, endTime = startTime + c.endTime;
+  // Threads: an explicit count (or OMP_NUM_THREADS) is obeyed; auto is tuned.
+  const int asked = requestedThreads(c);
+  const bool auto_threads = asked == 0 && std::getenv("OMP_NUM_THREADS") == nullptr;
+  if (asked > 0) omp_set_num_threads(asked);
+  ThreadTuner tuner = auto_threads ? ThreadTuner(n) : ThreadTuner::fixed(omp_get_max_threads());
+
+  // The run's clock: a new run starts at the time of its particles (0, or a
+  // particle_file's); a resumed one at the original run's start.
+  const Real startTime = resuming ? previous.startTime : init.startTime;
+  const Real resumeTime = init.startTime;
+  const long resumeStep = init.startStep;
   const bool massesGiven = init.massesGiven;
-  Scene<D> scene = makeScene<D>(c, std::move(init));
-  if (auto failure = scene.initialise(!massesGiven)) {
-    err << "sph: error: the initial state is not valid: particle id " << failure->id << ": "
-        << failure->detail << "\n";
+  Scene<D> scene = makeScene<D>(c, std::move(init), startTime);
+  try {
+    const auto failure = resuming ? scene.resume(resumeStep, resumeTime) : scene.initialise(!massesGiven);
+    if (failure) {
+      err << "sph: error: the initial state is not valid: particle id " << failure->id << ": " << failure->detail
+          << "\n";
+      return kBadInput;
+    }
+  } catch (const std::runtime_error& e) {
+    err << "sph: error: resume: " << resumeSnapshot << ": " << e.what() << "\n";
     return kBadInput;
   }
 
@@ -210,98 +327,215 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     if (!firstNew.empty()) std::filesystem::remove_all(firstNew, ignored);
     return kBadInput;
   }
-  if (!c.particleFile.empty() && (!c.blockMin.empty() || !c.discCenter.empty() || !c.points.empty()))
+  if (c.overwrite && inspectFolder(dir) == FolderContents::kRun) {
+    const std::size_t removed = removeRunFiles(dir);
+    err << "sph: note: --overwrite removed " << removed << " file(s) of the earlier run in " << c.output << "\n";
+  }
+  removeStaleTemporaries(dir);
+  if (!c.particleFile.empty() && !resuming && (!c.blockMin.empty() || !c.discCenter.empty() || !c.points.empty()))
     err << "sph: note: particles come from particle_file " << c.particleFile
         << "; the case's block, disc and points generators are not used\n";
   if (nearWall > 0)
     err << "sph: note: " << nearWall << " particle(s) start closer than h = " << c.h
         << " to a wall; the walls move them to distance h on the first step\n";
 
+  RunRecord record = resuming ? previous : RunRecord{};
+  describeCase(record, c);
+  record.name = c.name;
+  record.status = "running";
+  record.message.clear();
+  if (resuming) {
+    record.resumedAt.push_back("step " + std::to_string(resumeStep) + ", t = " + shortestDecimal(resumeTime) +
+                               " s, at " + isoNow());
+  } else {
+    record.started = isoNow();
+    record.startTime = startTime;
+  }
+  record.particles = n;
+  record.fluidParticles = scene.particles().fluidCount();
+  record.wallParticles = n - scene.particles().fluidCount();
+
   SnapshotInfo info{0, 0, c.h, c.spacing, {}, {}};
   if (c.starMass > 0) {
     // Random star particles have no lattice spacing: give the mean one, so
     // that renders size the particles sensibly.
-    const Real ball = D == 2 ? M_PI * c.starRadius * c.starRadius
-                             : 4 * M_PI / 3 * std::pow(c.starRadius, 3);
-    info.particleSpacing = std::pow(ball * static_cast<Real>(c.starParticles.size()) / static_cast<Real>(n), 1.0 / D);
+    const Real ball = D == 2 ? M_PI * c.starRadius * c.starRadius : 4 * M_PI / 3 * std::pow(c.starRadius, 3);
+    info.particleSpacing =
+        std::pow(ball * static_cast<Real>(c.starParticles.size()) / static_cast<Real>(n), 1.0 / D);
   }
   if (c.walls) info.domainMin = c.domainMin, info.domainMax = c.domainMax;
-  RunOutput<D> output(dir, c.name, info);
-  TimeStepLog dtLog((dir / "timestep.csv").string(), c.cfl > 0);
-  const long steps = c.cfl > 0 ? 0 : stepsFor(c);  // adaptive: until end_time
-  const bool showProgress = c.progress && isatty(STDERR_FILENO);
+  const bool adaptive = c.cfl > 0;
+  RunOutput<D> output(dir, c.name, info, record, adaptive);
+  if (resuming) output.resumeAfter(resumeStep, resumeTime);
+
+  // Steps of a fixed-dt run: ceil((end - start) / dt), counted from the start.
+  const long steps = adaptive ? 0 : static_cast<long>(std::ceil((c.endTime - startTime) / c.dt - 1e-9));
+  auto finished = [&] {
+    return adaptive ? scene.time() >= c.endTime * (1 - 1e-12) : scene.stepIndex() >= steps;
+  };
+  // Output: every output_every steps, or at every multiple of output_interval
+  // after the start (adaptive steps land on them).
+  const bool byInterval = c.outputInterval > 0;
+  auto outputIndex = [&](Real t) { return std::floor((t - startTime) / c.outputInterval * (1 + 1e-12) + 1e-9); };
+  Real nextOutput = byInterval ? startTime + (outputIndex(scene.time()) + 1) * c.outputInterval
+                               : std::numeric_limits<Real>::infinity();
+
+  const bool terminal = isatty(STDERR_FILENO);
+  const bool showLiveLine = c.progress && terminal;
+  const double progressEvery = terminal ? 0.25 : 10.0;
+  installStopHandlers();
   const auto wall0 = Clock::now();
   double stepSeconds = 0;
   auto lastProgress = wall0;
+  TimeStepStats dtStats;
+  const long firstStep = scene.stepIndex();
   int status = kSuccess;
+  auto saveRecord = [&] {
+    record.simulatedTime = scene.time();
+    record.step = scene.stepIndex();
+    record.threadsUsed = tuner.history();
+    record.addFile("run.json");
+    record.addFile("run.case");
+    writeRunRecord(dir, record);
+  };
   try {
-    output.write(scene);
-    auto finished = [&](long s) {
-      return steps > 0 ? s >= steps : scene.time() >= endTime * (1 - 1e-12);
-    };
-    for (long s = 1; !finished(s - 1); ++s) {
+    writeFileAtomically((dir / "run.case").string(), resolvedCaseText(c));
+    if (!resuming) output.write(scene);
+    saveRecord();
+    while (!finished()) {
+      if (stopSignal() != 0) break;
       const auto t0 = Clock::now();
-      const auto failure = scene.step();
-      stepSeconds += secondsSince(t0);
-      dtLog.add(scene);
+      const auto failure = scene.step(nextOutput);
+      const double dtWall = secondsSince(t0);
+      stepSeconds += dtWall;
+      tuner.record(dtWall);
+      dtStats.add(scene.lastTimeStep());
+      output.addTimeStep(scene);
       if (failure) {
-        if (showProgress) err << "\n";
-        err << "sph: error: " << failureMessage(*failure, scene.stepIndex(), scene.time())
-            << "\nsph: the outputs up to step " << output.lastStep() << " (t = "
-            << output.lastTime() << " s) are intact in " << output.seriesPath() << "\n";
-        dtLog.flush();  // the dt history up to the failure is what explains it
+        if (showLiveLine) err << "\n";
+        const std::string message = failureMessage(*failure, scene.stepIndex(), scene.time());
+        err << "sph: error: " << message << "\nsph: the outputs up to step " << output.lastStep()
+            << " (t = " << output.lastTime() << " s) are intact in " << output.seriesPath() << "\n";
+        output.flushTimeSteps();  // the dt history up to the failure is what explains it
+        record.status = "blew_up";
+        record.message = message;
         status = kBlewUp;
         break;
       }
-      if (s % c.outputEvery == 0 || finished(s)) {
+      // An adaptive dt that no longer lets the run end stops it, named.
+      if (adaptive && !finished() && (c.endTime - scene.time()) / scene.lastTimeStep().dt > kMaxSteps) {
+        if (showLiveLine) err << "\n";
+        const std::string message = "the adaptive time step collapsed at step " +
+                                    std::to_string(scene.stepIndex()) + ", t = " + shortestDecimal(scene.time()) +
+                                    " s: dt = " + shortestDecimal(scene.lastTimeStep().dt) + " s, set by the " +
+                                    scene.lastTimeStep().criterion +
+                                    " criterion, would need more than 1e12 steps to reach end_time";
+        err << "sph: error: " << message << "\n";
         output.write(scene);
-        dtLog.flush();
+        record.status = "blew_up";
+        record.message = message;
+        status = kBlewUp;
+        break;
       }
-      if (showProgress && secondsSince(lastProgress) > 0.25) {
+      const bool outputDue = byInterval ? scene.time() >= nextOutput * (1 - 1e-12) - 1e-12 * c.outputInterval
+                                        : scene.stepIndex() % c.outputEvery == 0;
+      if (outputDue || finished() || stopSignal() != 0) {
+        output.write(scene);
+        saveRecord();
+        if (byInterval) nextOutput = startTime + (outputIndex(scene.time()) + 1) * c.outputInterval;
+      }
+      if (c.progress && secondsSince(lastProgress) > progressEvery) {
         lastProgress = Clock::now();
         const double elapsed = secondsSince(wall0);
-        char line[160];
-        std::snprintf(line, sizeof line, "\r  t = %.4g / %.4g s   step %ld / %ld   ETA %s   ",
-                      scene.time(), endTime, s, steps,
-                      formatDuration(elapsed / (scene.time() - startTime) *
-                                     (endTime - scene.time())).c_str());
-        err << line << std::flush;
+        const double rate = stepSeconds > 0 ? static_cast<double>(n) * static_cast<double>(scene.stepIndex() - firstStep) / stepSeconds : 0;
+        char line[200];
+        std::snprintf(line, sizeof line, "t = %.4g / %.4g s   step %ld   %.3g M particle-steps/s   %d thread(s)   ETA %s",
+                      scene.time(), c.endTime, scene.stepIndex(), rate / 1e6, omp_get_max_threads(),
+                      formatDuration(elapsed / (scene.time() - resumeTime) * (c.endTime - scene.time())).c_str());
+        if (showLiveLine) err << "\r  " << line << "   " << std::flush;
+        else err << "sph: " << line << "\n" << std::flush;
       }
     }
   } catch (const std::runtime_error& e) {
-    if (showProgress) err << "\n";
+    if (showLiveLine) err << "\n";
+    err << "sph: error: " << e.what() << "\n";
+    record.status = "write_failed";
+    record.message = e.what();
+    try {
+      saveRecord();
+    } catch (const std::runtime_error&) {
+    }
+    return kWriteFailed;
+  }
+  if (showLiveLine) err << "\r" << std::string(100, ' ') << "\r" << std::flush;
+  const int signal = stopSignal();
+  if (signal != 0 && status == kSuccess) {
+    status = 128 + signal;
+    record.status = "interrupted";
+    record.message = std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + " at step " +
+                     std::to_string(scene.stepIndex()) + ", t = " + shortestDecimal(scene.time()) + " s";
+  }
+  try {
+    if (status == kSuccess) {
+      record.status = "finished";
+      if (c.starMass > 0) writeStarProfiles(scene, c, dir, out, record);
+    }
+    const double wall = secondsSince(wall0);
+    const long done = scene.stepIndex() - firstStep;
+    record.ended = isoNow();
+    record.wallSeconds += wall;
+    record.steppingSeconds += stepSeconds;
+    record.particleStepsPerSecond =
+        stepSeconds > 0 ? static_cast<double>(n) * static_cast<double>(done) / stepSeconds : 0;
+    record.neighboursPerParticle = scene.meanNeighbours();
+    record.bytesPerParticle = static_cast<double>(scene.bytesAllocated()) / static_cast<double>(n);
+    for (const auto& [name, count] : dtStats.criteria) record.dtCriteria[name] += count;
+    if (dtStats.steps() > 0) {
+      record.dtMin = resuming && previous.dtMin > 0 ? std::min(previous.dtMin, dtStats.dtMin) : dtStats.dtMin;
+      record.dtMax = std::max(record.dtMax, dtStats.dtMax);
+    }
+    long most = -1;
+    for (const auto& [name, count] : record.dtCriteria)
+      if (count > most) record.dtLimitedBy = name, most = count;
+    saveRecord();
+
+    char dtLine[200];
+    if (dtStats.steps() == 0) std::snprintf(dtLine, sizeof dtLine, "(no step taken)");
+    else if (!adaptive) std::snprintf(dtLine, sizeof dtLine, "(dt = %g s, fixed)", dtStats.dtMax);
+    else
+      std::snprintf(dtLine, sizeof dtLine, "(dt %.3g to %.3g s; set by %s in %.0f%% of the steps)", dtStats.dtMin,
+                    dtStats.dtMax, dtStats.mostOften().c_str(),
+                    100.0 * static_cast<double>(dtStats.criteria.at(dtStats.mostOften())) /
+                        static_cast<double>(dtStats.steps()));
+    std::string threads;
+    for (int t : tuner.history()) threads += (threads.empty() ? "" : " then ") + std::to_string(t);
+    if (auto_threads) threads += " (auto)";
+    char buf[1024];
+    std::snprintf(buf, sizeof buf,
+                  "sph: %s  (model %s, %dD)%s\n"
+                  "  particles        %zu%s\n"
+                  "  steps            %ld %s\n"
+                  "  simulated time   %s to %s s\n"
+                  "  wall time        %.3f s  (stepping %.3f s)\n"
+                  "  throughput       %.3g particle-steps/s\n"
+                  "  threads          %s\n"
+                  "  neighbours       %.1f per particle (mean at the end)\n"
+                  "  output           %s  (%ld snapshots)\n",
+                  c.name.c_str(), c.model.c_str(), D,
+                  status == kSuccess ? "" : ("  " + record.message.substr(0, 200)).c_str(), n,
+                  record.wallParticles ? (" (" + std::to_string(record.wallParticles) + " wall)").c_str() : "", done,
+                  dtLine, shortestDecimal(resumeTime).c_str(), shortestDecimal(scene.time()).c_str(), wall,
+                  stepSeconds, record.particleStepsPerSecond, threads.c_str(), scene.meanNeighbours(),
+                  output.seriesPath().c_str(), output.count());
+    out << buf;
+    if (signal != 0 && record.status == "interrupted")
+      err << "sph: stopped at step " << scene.stepIndex() << ", t = " << shortestDecimal(scene.time())
+          << " s (" << (signal == SIGINT ? "SIGINT" : "SIGTERM") << "); continue with: sph run --resume " << c.output
+          << "\n";
+  } catch (const std::runtime_error& e) {
     err << "sph: error: " << e.what() << "\n";
     return kWriteFailed;
   }
-  if (showProgress) err << "\r" << std::string(70, ' ') << "\r" << std::flush;
-  if (status == kSuccess && c.starMass > 0) {
-    try {
-      writeStarProfiles(scene, c, dir, out);
-    } catch (const std::runtime_error& e) {
-      err << "sph: error: " << e.what() << "\n";
-      return kWriteFailed;
-    }
-  }
-
-  const double wall = secondsSince(wall0);
-  const long done = scene.stepIndex();
-  char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "sph: %s  (model %s, %dD)\n"
-                "  particles        %zu\n"
-                "  steps            %ld  (dt = %g s)\n"
-                "  simulated time   %g s\n"
-                "  wall time        %.3f s  (stepping %.3f s)\n"
-                "  throughput       %.3g particle-steps/s\n"
-                "  threads          %d\n"
-                "  neighbours       %.1f per particle (mean at the end)\n"
-                "  output           %s  (%ld snapshots)\n",
-                c.name.c_str(), c.model.c_str(), D, n, done, c.dt, scene.time() - startTime,
-                wall, stepSeconds,
-                stepSeconds > 0 ? static_cast<double>(n) * static_cast<double>(done) / stepSeconds : 0.0,
-                omp_get_max_threads(), scene.meanNeighbours(), output.seriesPath().c_str(),
-                output.count());
-  out << buf;
   return status;
 }
 

@@ -313,6 +313,8 @@ std::uint64_t lastValue(File& f, const Stored& s, std::uint64_t size, const std:
 struct Layout {
   std::uint64_t points = 0;
   bool velocity = false, mass = false, id = false, time = false;
+  // The arrays a resume reads besides (the state an integrator carries).
+  bool acceleration = false, density = false, densityRate = false, xsph = false, kind = false, step = false;
 };
 
 const Element* onlyChild(const Header& h, const Element& parent, const std::string& name, bool required,
@@ -445,18 +447,28 @@ Layout checkLayout(const std::string& path) {
     };
     if (parent == "Points") require(isFloatType(arrayType) && components == 3, "type Float32 or Float64 and 3 components");
     if (parent == "PointData") {
-      bool* seen = name == "velocity" ? &L.velocity : name == "mass" ? &L.mass : name == "id" ? &L.id : nullptr;
-      if (seen) {
+      const std::pair<const char*, bool*> known[] = {
+          {"velocity", &L.velocity},       {"mass", &L.mass},        {"id", &L.id},
+          {"acceleration", &L.acceleration}, {"density", &L.density}, {"density_rate", &L.densityRate},
+          {"xsph_velocity", &L.xsph},      {"kind", &L.kind}};
+      for (const auto& [known_name, seen] : known) {
+        if (name != known_name) continue;
         if (*seen) throw Problem("has two point arrays named \"" + name + "\"");
         *seen = true;
       }
-      if (name == "velocity") require(isFloatType(arrayType) && components == 3, "type Float32 or Float64 and 3 components");
-      if (name == "mass") require(isFloatType(arrayType) && components == 1, "type Float32 or Float64 and 1 component");
-      if (name == "id") require(!isFloatType(arrayType) && components == 1, "an integer type and 1 component");
+      if (name == "velocity" || name == "acceleration" || name == "xsph_velocity")
+        require(isFloatType(arrayType) && components == 3, "type Float32 or Float64 and 3 components");
+      if (name == "mass" || name == "density" || name == "density_rate")
+        require(isFloatType(arrayType) && components == 1, "type Float32 or Float64 and 1 component");
+      if (name == "id" || name == "kind") require(!isFloatType(arrayType) && components == 1, "an integer type and 1 component");
     }
     if (parent == "FieldData" && name == "TimeValue") {
       require(components == 1 && *tuples >= 1, "1 component and at least 1 tuple");
       L.time = true;
+    }
+    if (parent == "FieldData" && name == "step") {
+      require(!isFloatType(arrayType) && components == 1 && *tuples >= 1, "an integer type, 1 component, 1 tuple");
+      L.step = true;
     }
     if (cells.count(parent) && (name == "offsets" || name == "connectivity")) {
       require(!isFloatType(arrayType) && components == 1, "an integer type and 1 component");
@@ -542,7 +554,8 @@ VtpParticles readChecked(const std::string& path) {
   quiet.check();
   vtkDataArraySelection* arrays = reader->GetPointDataArraySelection();
   arrays->DisableAllArrays();
-  for (const char* name : {"velocity", "mass", "id"}) arrays->EnableArray(name);
+  for (const char* name : {"velocity", "mass", "id", "acceleration", "density", "density_rate", "xsph_velocity", "kind"})
+    arrays->EnableArray(name);
   reader->GetCellDataArraySelection()->DisableAllArrays();
   reader->Update();
   quiet.check();
@@ -600,6 +613,44 @@ VtpParticles readChecked(const std::string& path) {
     std::sort(sorted.begin(), sorted.end());
     if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
       throw Problem("id " + std::to_string(*twice) + " appears more than once: ids must be unique");
+  }
+  auto readVectors = [&](bool present, const char* name, std::vector<std::array<Real, 3>>& to) {
+    if (!present) return;
+    vtkDataArray* a = pointArray(name, 3);
+    to.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      a->GetTuple(static_cast<vtkIdType>(i), to[i].data());
+      if (!finite(to[i])) throw Problem("particle " + std::to_string(i) + " has " + name + " that is not finite");
+    }
+  };
+  auto readScalars = [&](bool present, const char* name, std::vector<Real>& to) {
+    if (!present) return;
+    vtkDataArray* a = pointArray(name, 1);
+    to.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      to[i] = a->GetTuple1(static_cast<vtkIdType>(i));
+      if (!std::isfinite(to[i])) throw Problem("particle " + std::to_string(i) + " has " + name + " that is not finite");
+    }
+  };
+  readVectors(L.acceleration, "acceleration", out.a);
+  readVectors(L.xsph, "xsph_velocity", out.vXsph);
+  readScalars(L.density, "density", out.rho);
+  readScalars(L.densityRate, "density_rate", out.drho);
+  if (L.kind) {
+    vtkDataArray* k = pointArray("kind", 1);
+    out.kind.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const double value = k->GetTuple1(static_cast<vtkIdType>(i));
+      if (value != 0 && value != 1) throw Problem("particle " + std::to_string(i) + " has kind " + number(value) + ": it must be 0 (fluid) or 1 (wall)");
+      out.kind[i] = static_cast<std::uint8_t>(value);
+    }
+  }
+  if (L.step) {
+    vtkDataArray* st = poly->GetFieldData()->GetArray("step");
+    if (!st || st->GetNumberOfTuples() < 1) throw Problem("VTK did not read its step");
+    const double value = st->GetTuple1(0);
+    if (!(value >= 0 && value <= 1e15)) throw Problem("step = " + number(value) + ": it must be >= 0");
+    out.step = static_cast<long>(value);
   }
   if (L.time) {
     vtkDataArray* t = poly->GetFieldData()->GetArray("TimeValue");

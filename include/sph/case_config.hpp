@@ -1,13 +1,16 @@
 // CaseConfig: the typed content of a case file (and of its command-line
-// overrides). One field per key; the key names, units, defaults and allowed
-// ranges are listed once, in src/main.cpp, where CLI11 reads them.
+// overrides). One field per key; the key names, units, defaults, allowed
+// ranges and help are listed once, in the key table (case_keys.hpp), which
+// drives CLI11 (src/main.cpp), --help and the range checks.
 //
-// validateCase() checks every range before anything runs or is written and
-// throws CaseError naming the key and what is allowed.
+// validateCase() checks every range and every combination before anything
+// runs or is written, and throws CaseError naming the key and what is
+// allowed.
 #pragma once
 
 #include "sph/types.hpp"
 
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,6 +63,7 @@ struct CaseConfig {
   Real cfl = 0;             // 0: fixed dt; > 0: adaptive dt with this CFL factor
   Real endTime = 1.0;
   long outputEvery = 100;
+  Real outputInterval = 0;  // > 0: a snapshot every this many seconds of simulated time
 
   // domain (walls)
   std::vector<Real> domainMin{0, 0};
@@ -74,17 +78,36 @@ struct CaseConfig {
   std::vector<Real> velocity;        // initial velocity of generated particles
   std::string particleFile;          // .csv (x,y[,z][,vx,vy[,vz]]) or .vtp from sph
 
-  int threads = 0;                   // 0: OpenMP default
+  std::string threads = "auto";      // "auto" or a count
   bool progress = true;              // progress line when stderr is a terminal
+  bool overwrite = false;            // replace another run's files in the output folder
+  std::string resume;                // continue the run in this folder
+
+  // How sph was called (for run.json).
+  std::vector<std::string> commandLine;
+
+  // The keys the case file or the command line set (the rest are defaults).
+  std::set<std::string> given;
+  bool isGiven(const std::string& key) const { return given.count(key) > 0; }
 };
 
 // Limits of validateCase: 32-bit particle indices, OpenMP team sizes, and a
 // step count that a long can hold with room to spare.
 constexpr double kMaxParticles = 1e9;
 constexpr int kMaxThreads = 1024;
+// Domain extent over support radius, per axis: cell indices and the hash
+// grid's strides must fit in 64 bits in 3D.
+constexpr double kMaxCellsPerAxis = 1e6;
 constexpr double kMaxSteps = 1e12;
 
 void validateCase(const CaseConfig& c);
+
+// The thread count a validated `threads` key asks for (0: auto).
+int requestedThreads(const CaseConfig& c);
+
+// Keys the case sets that nothing it chose reads (alpha with the seed
+// model, gamma with a linear EOS, ...), each with the reason.
+std::vector<std::string> unusedKeyNotes(const CaseConfig& c);
 
 // The first D values of a validated vector key as a Vec<D>.
 template <int D>

@@ -76,7 +76,7 @@ inline constexpr FieldInfo kFieldTable[kFieldCount] = {
     {kFieldVHalf, "vHalf", FieldRole::kStage, nullptr},
     {kFieldRhoHalf, "rhoHalf", FieldRole::kStage, nullptr},
     {kFieldC, "c", FieldRole::kDerived, nullptr},
-    {kFieldVXsph, "vXsph", FieldRole::kDerived, nullptr},
+    {kFieldVXsph, "vXsph", FieldRole::kDerived, "xsph_velocity"},
     {kFieldVWall, "vWall", FieldRole::kDerived, nullptr},
     {kFieldX0, "x0", FieldRole::kStage, nullptr},
     {kFieldV0, "v0", FieldRole::kStage, nullptr},

@@ -22,11 +22,19 @@ struct InitialState {
   Particles<D> particles;
   bool massesGiven = false;   // masses came from a .vtp: do not rescale
   Real startTime = 0;         // time stored in a .vtp, else 0
+  long startStep = 0;         // step stored in a snapshot (resume)
 };
 
 // Builds the initial particles of a validated case; throws CaseError on a
 // missing or malformed file, zero particles, or a particle outside the domain.
 template <int D>
 InitialState<D> buildInitialState(const CaseConfig& c);
+
+// The particles of a snapshot sph wrote, with everything a resumed run needs
+// to continue bit for bit: state (x, v, rho, m, id, kind) and the rates the
+// integrator carries into the next step (a, and drho, the XSPH correction
+// when present). Throws CaseError naming the file.
+template <int D>
+InitialState<D> resumeState(const std::string& snapshot);
 
 }  // namespace sph

@@ -130,6 +130,7 @@ struct Particles : FieldArrays<D> {
 
   // Size the core fields for n particles (x, v, m, id are expected to be set
   // already), with walls from index `fluidCount` on (all fluid by default).
+  // Other fields are left as they are until allocate().
   void resize(std::size_t n, std::size_t fluidCount = SIZE_MAX) {
     x.resize(n);
     v.resize(n, Vec<D>::Zero());
@@ -139,7 +140,13 @@ struct Particles : FieldArrays<D> {
     m.resize(n, 0);
     id.resize(n, 0);
     fluid_ = std::min(fluidCount, n);
-    allocate(allocated_);
+    if (hasWalls()) {
+      kind.resize(n);
+      for (std::size_t i = 0; i < n; ++i) kind[i] = i < fluid_ ? kFluid : kWall;
+      allocated_ |= fieldBit(kFieldKind);
+    }
+    allocated_ |= kCoreFields;
+    setPermuted();
   }
 
   // The velocity particle i drifts with when its velocity is `velocity`:
@@ -159,13 +166,7 @@ struct Particles : FieldArrays<D> {
     if (hasWalls())
       for (std::size_t i = 0; i < n; ++i) kind[i] = i < fluid_ ? kFluid : kWall;
     allocated_ = wanted;
-    permuted_ = 0;
-    for (const FieldInfo& info : kFieldTable)
-      if (isPermuted(info.role) && ((wanted >> info.id) & 1u)) permuted_ |= fieldBit(info.id);
-    // Density is a state variable only when it is integrated (a density
-    // rate exists); summation density recomputes it after every sort.
-    if (((wanted >> kFieldDrho) & 1u) == 0) permuted_ &= ~fieldBit(kFieldRho);
-    shadow_.sizeFields(permuted_, n);
+    setPermuted();
   }
 
   // Reorder the state and stage fields so that new particle k is old
@@ -194,6 +195,17 @@ struct Particles : FieldArrays<D> {
   std::size_t bytesAllocated() const { return FieldArrays<D>::bytesAllocated() + shadow_.bytesAllocated(); }
 
  private:
+  // The permuted fields (allocated, with a permuted role) and their shadows.
+  void setPermuted() {
+    permuted_ = 0;
+    for (const FieldInfo& info : kFieldTable)
+      if (isPermuted(info.role) && ((allocated_ >> info.id) & 1u)) permuted_ |= fieldBit(info.id);
+    // Density is a state variable only when it is integrated (a density
+    // rate exists); summation density recomputes it after every sort.
+    if (((allocated_ >> kFieldDrho) & 1u) == 0) permuted_ &= ~fieldBit(kFieldRho);
+    shadow_.sizeFields(permuted_, size());
+  }
+
   std::size_t fluid_ = 0;
   FieldSet allocated_ = 0;
   FieldSet permuted_ = 0;

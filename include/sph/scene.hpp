@@ -12,10 +12,7 @@
 
 #include "sph/boundaries/damped_reflecting_walls.hpp"
 #include "sph/hash_grid.hpp"
-#include "sph/integrators/explicit_euler.hpp"
-#include "sph/integrators/leap_frog.hpp"
-#include "sph/integrators/runge_kutta4.hpp"
-#include "sph/integrators/symplectic_euler.hpp"
+#include "sph/integrators/integrators.hpp"
 #include "sph/mass_scaling.hpp"
 #include "sph/models/seed_wcsph.hpp"
 #include "sph/models/wcsph.hpp"
@@ -24,7 +21,10 @@
 #include "sph/state_check.hpp"
 #include "sph/time_step.hpp"
 
+#include <cmath>
+#include <limits>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 #include <variant>
 
@@ -34,9 +34,6 @@ struct Energy {
   Real kinetic = 0, potential = 0;
   Real total() const { return kinetic + potential; }
 };
-
-template <int D>
-using Integrator = std::variant<LeapFrog<D>, SymplecticEuler<D>, ExplicitEuler<D>, RungeKutta4<D>>;
 
 template <int D>
 class Scene {
@@ -68,8 +65,27 @@ class Scene {
     return finishStep([](std::size_t) {});
   }
 
-  std::optional<StateFailure> step() {
-    const TimeStepChoice choice = timeStep_.next(extremes_, model_, time_);
+  // Continue from a snapshot of this scene taken after step `step` at time
+  // `time`: its particles already carry the rates the integrator needs (a,
+  // and drho, the XSPH correction), which are NOT evaluated again: leap-
+  // frog's a was evaluated with the predicted velocity, so re-evaluating it
+  // from the snapshot's v would not continue the run bit for bit. The
+  // snapshot is in sorted order, so the sort must leave it as it is.
+  std::optional<StateFailure> resume(long step, Real time) {
+    step_ = step;
+    time_ = time;
+    sort();
+    const auto& order = grid_.order();
+    for (std::size_t k = 0; k < order.size(); ++k)
+      if (order[k] != k)
+        throw std::runtime_error("the snapshot is not in the order sph keeps its particles (written by another program?)");
+    return finishStep([](std::size_t) {});
+  }
+
+  // One step; an adaptive dt is cut so that the step ends no later than
+  // `landOn` (the next output time).
+  std::optional<StateFailure> step(Real landOn = std::numeric_limits<Real>::infinity()) {
+    const TimeStepChoice choice = timeStep_.next(extremes_, model_, time_, landOn);
     lastStep_ = choice;
     context_ = StepContext{step_ + 1, time_ + choice.dt, choice.dt};
     auto constrain = [&](Particles<D>& P, std::size_t i) {
@@ -83,8 +99,7 @@ class Scene {
         },
         integrator_);
     ++step_;
-    // A fixed dt keeps time = start + n dt exact; adaptive steps add up.
-    time_ = timeStep_.adaptive() ? time_ + choice.dt : startTime_ + static_cast<Real>(step_) * choice.dt;
+    time_ = timeStep_.adaptive() ? time_ + choice.dt : fixedStepTime(step_);
     return failure;
   }
 
@@ -115,6 +130,16 @@ class Scene {
   }
 
  private:
+  // A fixed dt keeps time = start + n dt, without the round-off of adding
+  // dt n times; when 1/dt is a whole number (dt = 1e-4) it is computed as
+  // n / (1/dt), the double nearest the decimal value, so that the time
+  // stamps of the outputs read 0.06, not 0.060000000000000005.
+  Real fixedStepTime(long n) const {
+    const Real rate = 1 / timeStep_.dt;
+    if (rate == std::round(rate) && rate < 9e15) return startTime_ + static_cast<Real>(n) / rate;
+    return startTime_ + static_cast<Real>(n) * timeStep_.dt;
+  }
+
   void sort() {
     grid_.build(P_.x, P_.fluidCount());
     P_.permute(grid_.order());

@@ -20,7 +20,7 @@ namespace sph {
 
 struct TimeStepChoice {
   Real dt;
-  const char* criterion;  // "fixed", "cfl", "viscous", "force", "max", "end"
+  const char* criterion;  // "fixed", "cfl", "viscous", "force", "max", "end", "output"
 };
 
 // The extremes of the state that the time step needs, reduced by the scene
@@ -37,8 +37,11 @@ struct TimeStepControl {
 
   bool adaptive() const { return cfl > 0; }
 
+  // The next dt; adaptive steps are cut to land on end_time and on `landOn`
+  // (an output time) rather than overshoot them.
   template <class Model>
-  TimeStepChoice next(const StateExtremes& s, const Model& model, Real time) const {
+  TimeStepChoice next(const StateExtremes& s, const Model& model, Real time,
+                      Real landOn = std::numeric_limits<Real>::infinity()) const {
     TimeStepChoice choice{dt, adaptive() ? "max" : "fixed"};
     if (adaptive()) {
       const Real h = model.smoothingLength();
@@ -50,6 +53,7 @@ struct TimeStepControl {
     // Land exactly on end_time rather than overshoot it (adaptive only: a
     // fixed dt keeps its value and the step count ceil(end_time / dt)).
     if (adaptive() && time + choice.dt > endTime) choice = {endTime - time, "end"};
+    if (adaptive() && landOn > time && time + choice.dt > landOn) choice = {landOn - time, "output"};
     return choice;
   }
 

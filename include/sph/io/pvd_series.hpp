@@ -1,6 +1,8 @@
 // PvdSeries: the ParaView collection file (.pvd) listing one .vtp per output
 // step with its time. It is rewritten (atomically) after every output step so
-// that a run stopped at any moment leaves a series ParaView opens.
+// that a run stopped at any moment leaves a series ParaView opens. A resumed
+// run loads the series it continues. Times are written as the shortest
+// decimal that reads back exactly.
 // VTK has no standalone writer for this tiny XML format, so we write it.
 #pragma once
 
@@ -14,21 +16,27 @@ namespace sph {
 
 class PvdSeries {
  public:
+  struct Entry {
+    Real time;
+    long step;
+    std::string file;  // relative to the .pvd
+  };
+
   explicit PvdSeries(std::string path) : path_(std::move(path)) {}
+
+  // The series a run wrote; throws std::runtime_error naming the file if it
+  // cannot be read or is not one sph writes.
+  static PvdSeries load(const std::string& path);
 
   // Append a dataset (file name relative to the .pvd) and rewrite the file.
   // `step` is written as an extra attribute; ParaView's PVD reader ignores it.
   void add(Real time, long step, const std::string& relativeFile);
 
   const std::string& path() const { return path_; }
+  const std::vector<Entry>& entries() const { return entries_; }
 
  private:
   std::string path_;
-  struct Entry {
-    Real time;
-    long step;
-    std::string file;
-  };
   std::vector<Entry> entries_;
 };
 

@@ -2,11 +2,13 @@
 // vtkXMLPolyDataWriter (binary, zlib-compressed) and read back with
 // vtkXMLPolyDataReader (for continuing a run from any output step).
 //
-// Points are 3D (z = 0 in 2D) with one vertex cell each. Point data:
+// Points are 3D (z = 0 in 2D) with one vertex cell each. Point data: every
+// allocated field of the field table that has a snapshot name (fields.hpp):
 // velocity, acceleration (3 components, also in 2D), density, pressure,
-// mass, id. Field data: TimeValue (ParaView's time key), step,
-// smoothing_length, dimension, particle_spacing, and domain_min/domain_max
-// (D values each) when the scene has walls.
+// mass, id, and when present density_rate, kind, xsph_velocity. Field data:
+// TimeValue (ParaView's time key), step, smoothing_length, dimension,
+// particle_spacing, and domain_min/domain_max (D values each) when the
+// scene has walls.
 #pragma once
 
 #include "sph/particles.hpp"
@@ -34,7 +36,12 @@ struct VtpParticles {
   std::vector<Real> m;           // empty if the file has no mass array
   std::vector<std::int64_t> id;  // empty if the file has no id array
   Real time = 0;
+  long step = 0;
   bool hasVelocity = false;
+  // What a resume restores besides (empty when the file lacks the array).
+  std::vector<std::array<Real, 3>> a, vXsph;
+  std::vector<Real> rho, drho;
+  std::vector<std::uint8_t> kind;
 };
 
 // Reads the particles of a .vtp (src/vtp_read.cpp): one PolyData piece with

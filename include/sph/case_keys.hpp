@@ -1,0 +1,68 @@
+// The table of case keys: one row per key of a case file (each also a flag
+// of `sph run`), with its topic, the CaseConfig field it sets, its unit, help
+// text, allowed range and, for choices, the method table it picks from.
+// src/main.cpp declares the CLI11 options from it, --help prints it grouped
+// by topic, and validateCase() checks the ranges it states. CLI11-free.
+//
+// Units in 2D are per unit depth: a 2D density is kg/m^2, a 2D pressure N/m.
+#pragma once
+
+#include "sph/case_config.hpp"
+
+#include <limits>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace sph {
+
+enum class KeyGroup { kScene, kPhysics, kNumerics, kOutput };
+
+const char* groupName(KeyGroup g);
+
+// Allowed values of a number (and of each number of a list): lo ... hi, each
+// end open or closed; an infinite end is no bound.
+struct KeyRange {
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  bool loOpen = false, hiOpen = false;
+  bool integer = false;
+  std::string text() const;  // "> 0", "0 to 1", "1 to 1024", ...
+  bool contains(double x) const;
+};
+
+using KeyField = std::variant<Real CaseConfig::*, long CaseConfig::*, int CaseConfig::*, bool CaseConfig::*,
+                              std::string CaseConfig::*, std::vector<Real> CaseConfig::*,
+                              std::vector<long> CaseConfig::*>;
+
+struct KeySpec {
+  const char* name;           // the key, and the flag --name
+  KeyGroup group;
+  KeyField field;
+  const char* unit;           // "" when none
+  const char* help;
+  KeyRange range;             // numbers only
+  const char* defaultText;    // the default when it is not the field's initial value, else nullptr
+  std::vector<std::string> (*choices)();  // allowed names, nullptr for free text
+};
+
+const std::vector<KeySpec>& caseKeys();
+const KeySpec* findKey(const std::string& name);
+
+// The help line of a key: "help [unit; range; default]" and its choices.
+std::string keyHelp(const KeySpec& k);
+
+// Throws CaseError if a given value is outside its key's range or choices.
+void checkKeyRanges(const CaseConfig& c);
+
+// The value of key k in c as case-file text ("0.01", "[0, 0]", "\"tait\""),
+// "" for an empty list or text (nothing given).
+std::string keyValueText(const CaseConfig& c, const KeySpec& k);
+
+// Keys that say how to run, not what (resume, overwrite): not part of a
+// resolved case.
+bool isRunOnlyKey(const KeySpec& k);
+
+// A case file holding every key with its value in c, by topic.
+std::string resolvedCaseText(const CaseConfig& c);
+
+}  // namespace sph

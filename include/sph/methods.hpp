@@ -1,0 +1,139 @@
+// The registration point of every method a case chooses by name: one row per
+// method with its name, a one-line summary (with its source), the case keys
+// it uses, and the function that builds it. The factory (model_registry.hpp),
+// the validation of choices, the "unused key" warnings, --help and the tests
+// all read these tables; a method's name is written here and nowhere else.
+//
+// A row whose builder returns nothing is a choice that builds no object
+// (viscosity "none").
+#pragma once
+
+#include "sph/case_config.hpp"
+#include "sph/integrators/integrators.hpp"
+#include "sph/kernels/kernels.hpp"
+#include "sph/passes/wcsph_forces.hpp"
+#include "sph/terms/equation_of_state.hpp"
+
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace sph {
+
+// f(type_identity<Alt>) for every alternative Alt of the variant V.
+template <class T>
+struct TypeTag {
+  using type = T;
+};
+template <class V, class F, std::size_t... I>
+void forEachAlternative(F&& f, std::index_sequence<I...>) {
+  (f(TypeTag<std::variant_alternative_t<I, V>>{}), ...);
+}
+template <class V, class F>
+void forEachAlternative(F&& f) {
+  forEachAlternative<V>(f, std::make_index_sequence<std::variant_size_v<V>>{});
+}
+
+template <class T>
+struct Method {
+  const char* name;
+  const char* summary;
+  std::vector<const char*> keys;  // the case keys this method reads
+  T (*make)(const CaseConfig&);
+};
+
+template <int D>
+const std::vector<Method<Kernel<D>>>& kernelMethods() {
+  static const std::vector<Method<Kernel<D>>> m = {
+      {"cubic_spline", "M4 cubic B-spline, support 2h (Monaghan & Lattanzio 1985)", {"h"},
+       [](const CaseConfig& c) -> Kernel<D> { return CubicSpline<D>(c.h); }},
+      {"wendland_c2", "Wendland C2, support 2h (Wendland 1995; as in DualSPHysics)", {"h"},
+       [](const CaseConfig& c) -> Kernel<D> { return WendlandC2<D>(c.h); }},
+      {"gaussian", "Gaussian truncated at 3h and renormalised", {"h"},
+       [](const CaseConfig& c) -> Kernel<D> { return Gaussian<D>(c.h); }},
+      {"muller", "Mueller, Charypar & Gross 2003 set, support h: poly6 density, spiky gradient, viscosity Laplacian",
+       {"h"}, [](const CaseConfig& c) -> Kernel<D> { return Muller<D>(c.h); }},
+  };
+  return m;
+}
+
+inline const std::vector<Method<EquationOfState>>& eosMethods() {
+  static const std::vector<Method<EquationOfState>> m = {
+      {"linear", "p = k (rho - rho0)", {"k", "rho0"},
+       [](const CaseConfig& c) -> EquationOfState { return LinearEos{c.k, c.rho0}; }},
+      {"linear_clamped", "p = max(0, k (rho - rho0)): no tension (Monaghan 2000)", {"k", "rho0"},
+       [](const CaseConfig& c) -> EquationOfState { return ClampedLinearEos{c.k, c.rho0}; }},
+      {"tait", "p = rho0 c0^2/gamma ((rho/rho0)^gamma - 1) (Batchelor 1967; Monaghan 1994)", {"c0", "gamma", "rho0"},
+       [](const CaseConfig& c) -> EquationOfState { return TaitEos{c.rho0, c.c0, c.gamma}; }},
+      {"polytropic", "p = k rho^(1 + 1/n) (the toy star)", {"k", "polytropic_index"},
+       [](const CaseConfig& c) -> EquationOfState { return PolytropicEos{c.k, c.polytropicIndex}; }},
+  };
+  return m;
+}
+
+inline const std::vector<Method<ViscosityChoice>>& viscosityMethods() {
+  static const std::vector<Method<ViscosityChoice>> m = {
+      {"laplacian",
+       "mu sum m_j (v_j - v_i)/(rho_i rho_j) lap W (Mueller's viscosity kernel, or -2 W'/r: Brookshaw 1985)", {"mu"},
+       [](const CaseConfig& c) -> ViscosityChoice {
+         if (c.mu > 0) return LaplacianViscosityChoice{c.mu};
+         return NoViscosity{};
+       }},
+      {"monaghan", "artificial viscosity on approaching pairs (Monaghan 1992)", {"alpha", "beta"},
+       [](const CaseConfig& c) -> ViscosityChoice {
+         if (c.alpha > 0 || c.beta > 0) return MonaghanViscosityChoice{c.alpha, c.beta};
+         return NoViscosity{};
+       }},
+      {"none", "no viscosity", {}, [](const CaseConfig&) -> ViscosityChoice { return NoViscosity{}; }},
+  };
+  return m;
+}
+
+// Integrators are types (integrators.hpp): their rows come from the types'
+// own name and summary, and each row builds its alternative.
+template <int D>
+const std::vector<Method<Integrator<D>>>& integratorMethods() {
+  static const std::vector<Method<Integrator<D>>> m = [] {
+    std::vector<Method<Integrator<D>>> rows;
+    forEachAlternative<Integrator<D>>([&](auto type) {
+      using T = typename decltype(type)::type;
+      rows.push_back({T::name, T::summary, {}, [](const CaseConfig&) -> Integrator<D> { return T{}; }});
+    });
+    return rows;
+  }();
+  return m;
+}
+
+struct ModelRow {
+  const char* name;
+  const char* summary;
+  std::vector<const char*> keys;
+};
+inline const std::vector<ModelRow>& modelMethods() {
+  static const std::vector<ModelRow> m = {
+      {"seed_wcsph", "the seed 2D weakly-compressible scheme exactly as written (its kernels, linear EOS, forces)",
+       {"h", "k", "rho0", "mu", "g"}},
+      {"wcsph", "weakly-compressible SPH composed from kernel, eos, viscosity, body forces and XSPH",
+       {"h", "rho0", "g", "kernel", "eos", "viscosity", "xsph", "damping", "integrator", "cfl"}},
+  };
+  return m;
+}
+
+// The names of a table, in order.
+template <class Table>
+std::vector<std::string> methodNames(const Table& table) {
+  std::vector<std::string> names;
+  for (const auto& row : table) names.push_back(row.name);
+  return names;
+}
+
+// The row called `name`, or nullptr.
+template <class Table>
+const typename Table::value_type* findMethod(const Table& table, const std::string& name) {
+  for (const auto& row : table)
+    if (name == row.name) return &row;
+  return nullptr;
+}
+
+}  // namespace sph

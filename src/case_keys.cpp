@@ -1,0 +1,278 @@
+#include "sph/case_keys.hpp"
+
+#include "sph/integrators/integrators.hpp"
+#include "sph/io/number_format.hpp"
+#include "sph/methods.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace sph {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Ranges: open and closed ends.
+KeyRange above(double lo, double hi = kInf) { return {lo, hi, true, false, false}; }
+KeyRange within(double lo, double hi) { return {lo, hi, false, false, false}; }
+KeyRange count(double lo, double hi) { return {lo, hi, false, false, true}; }
+// Coordinates and lengths: large enough for any scene, small enough that
+// every product the program forms stays finite.
+KeyRange coordinate() { return within(-1e9, 1e9); }
+
+std::vector<std::string> kernelNames() { return methodNames(kernelMethods<2>()); }
+std::vector<std::string> eosNames() { return methodNames(eosMethods()); }
+std::vector<std::string> viscosityNames() { return methodNames(viscosityMethods()); }
+std::vector<std::string> integratorNames() { return methodNames(integratorMethods<2>()); }
+std::vector<std::string> modelNames() { return methodNames(modelMethods()); }
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+}  // namespace
+
+const char* groupName(KeyGroup g) {
+  switch (g) {
+    case KeyGroup::kScene: return "Scene: model, domain and particles";
+    case KeyGroup::kPhysics: return "Physics";
+    case KeyGroup::kNumerics: return "Numerics: time stepping and threads";
+    case KeyGroup::kOutput: return "Output";
+  }
+  return "";
+}
+
+std::string KeyRange::text() const {
+  const bool hasLo = std::isfinite(lo), hasHi = std::isfinite(hi);
+  if (hasLo && hasHi) {
+    if (!loOpen && !hiOpen) return fmt(lo) + " to " + fmt(hi);
+    return std::string(loOpen ? "> " : ">= ") + fmt(lo) + " and " + (hiOpen ? "< " : "<= ") + fmt(hi);
+  }
+  if (hasLo) return std::string(loOpen ? "> " : ">= ") + fmt(lo);
+  if (hasHi) return std::string(hiOpen ? "< " : "<= ") + fmt(hi);
+  return "any finite number";
+}
+
+bool KeyRange::contains(double x) const {
+  if (!std::isfinite(x)) return false;
+  if (integer && x != std::floor(x)) return false;
+  if (loOpen ? !(x > lo) : !(x >= lo)) return false;
+  if (hiOpen ? !(x < hi) : !(x <= hi)) return false;
+  return true;
+}
+
+const std::vector<KeySpec>& caseKeys() {
+  using G = KeyGroup;
+  using C = CaseConfig;
+  static const std::vector<KeySpec> keys = {
+      // Scene
+      {"model", G::kScene, &C::model, "", "Physics model", {}, nullptr, modelNames},
+      {"dimension", G::kScene, &C::dimension, "", "Spatial dimension", count(2, 3), nullptr, nullptr},
+      {"domain_min", G::kScene, &C::domainMin, "m", "Lower corner of the domain box (D values)", coordinate(),
+       nullptr, nullptr},
+      {"domain_max", G::kScene, &C::domainMax, "m",
+       "Upper corner of the domain box (D values; more than 2h above domain_min)", coordinate(), nullptr, nullptr},
+      {"walls", G::kScene, &C::walls, "", "Damped reflecting walls on the domain box (--no-walls: none)", {},
+       nullptr, nullptr},
+      {"block_min", G::kScene, &C::blockMin, "m", "Lattice block of fluid: lower corner (D values)", coordinate(),
+       "none", nullptr},
+      {"block_max", G::kScene, &C::blockMax, "m", "Lattice block of fluid: upper corner (D values)", coordinate(),
+       "none", nullptr},
+      {"disc_center", G::kScene, &C::discCenter, "m", "Lattice disc (2D) or ball (3D) of fluid: centre (D values)",
+       coordinate(), "none", nullptr},
+      {"disc_radius", G::kScene, &C::discRadius, "m", "Disc or ball radius", within(0, 1e9), "none", nullptr},
+      {"spacing", G::kScene, &C::spacing, "m", "Lattice spacing dx of blocks and discs", within(0, 1e9), "none",
+       nullptr},
+      {"velocity", G::kScene, &C::velocity, "m/s", "Initial velocity of generated particles (D values)",
+       within(-1e6, 1e6), "0", nullptr},
+      {"points", G::kScene, &C::points, "m", "Explicit particles: x y [z] per point", coordinate(), "none", nullptr},
+      {"particle_file", G::kScene, &C::particleFile, "",
+       "Particles from a CSV (header x,y[,z][,vx,vy[,vz]]) or a .vtp written by sph; replaces the generators",
+       {}, "none", nullptr},
+      {"star_mass", G::kScene, &C::starMass, "kg", "Toy star mass M (0: no star; model wcsph, eos polytropic)",
+       within(0, 1e12), nullptr, nullptr},
+      {"star_radius", G::kScene, &C::starRadius, "m", "Toy star radius R", within(0, 1e9), nullptr, nullptr},
+      {"star_particles", G::kScene, &C::starParticles, "", "Particles per star", count(1, 1e9), "none", nullptr},
+      {"star_center", G::kScene, &C::starCenter, "m",
+       "Star centres, D values per star (the attraction -lambda x always pulls to the origin)", coordinate(),
+       "none", nullptr},
+      {"star_velocity", G::kScene, &C::starVelocity, "m/s", "Star velocities, D values per star",
+       within(-1e6, 1e6), "0", nullptr},
+      {"seed", G::kScene, &C::seed, "", "Random seed of the star particles", count(0, 4294967295.0), nullptr,
+       nullptr},
+      // Physics
+      {"h", G::kPhysics, &C::h, "m",
+       "Smoothing length h: the seed scheme's support radius; kernel support is 2h (cubic, Wendland), "
+       "3h (Gaussian), h (Mueller)",
+       within(1e-9, 1e9), nullptr, nullptr},
+      {"rho0", G::kPhysics, &C::rho0, "kg/m^3 (3D), kg/m^2 (2D)", "Rest density", above(0, 1e10), nullptr, nullptr},
+      {"k", G::kPhysics, &C::k, "m^2/s^2 (linear EOS)",
+       "EOS stiffness: p = k (rho - rho0) (linear, seed), or p = k rho^(1+1/n) (polytropic)", above(0, 1e15),
+       nullptr, nullptr},
+      {"eos", G::kPhysics, &C::eos, "", "Equation of state (model wcsph)", {}, "linear", eosNames},
+      {"c0", G::kPhysics, &C::c0, "m/s", "Tait sound speed (eos tait; usually 10x the largest flow speed)",
+       within(0, 1e6), "none", nullptr},
+      {"gamma", G::kPhysics, &C::gamma, "", "Tait exponent (eos tait)", above(0, 20), nullptr, nullptr},
+      {"polytropic_index", G::kPhysics, &C::polytropicIndex, "", "n in p = k rho^(1 + 1/n) (eos polytropic)",
+       above(0, 100), nullptr, nullptr},
+      {"kernel", G::kPhysics, &C::kernel, "", "Kernel (model wcsph)", {}, "cubic_spline", kernelNames},
+      {"viscosity", G::kPhysics, &C::viscosity, "", "Viscosity (model wcsph)", {}, "laplacian", viscosityNames},
+      {"mu", G::kPhysics, &C::mu, "Pa s (3D), kg/s (2D)",
+       "Dynamic viscosity (seed model, viscosity laplacian; 0 switches it off)", within(0, 1e10), nullptr, nullptr},
+      {"alpha", G::kPhysics, &C::alpha, "", "Monaghan viscosity alpha (viscosity monaghan)", within(0, 100),
+       nullptr, nullptr},
+      {"beta", G::kPhysics, &C::beta, "", "Monaghan viscosity beta (viscosity monaghan)", within(0, 100), nullptr,
+       nullptr},
+      {"g", G::kPhysics, &C::g, "m/s^2", "Gravity along -y (2D) or -z (3D) (0 switches it off)", within(-1e6, 1e6),
+       nullptr, nullptr},
+      {"restitution", G::kPhysics, &C::restitution, "",
+       "Reflecting walls: the normal velocity becomes -e times itself", within(0, 1), nullptr, nullptr},
+      {"xsph", G::kPhysics, &C::xsph, "", "XSPH epsilon (model wcsph; 0: off)", within(0, 1), nullptr, nullptr},
+      {"damping", G::kPhysics, &C::damping, "1/s", "Linear damping nu in a = -nu v (model wcsph; 0: off)",
+       within(0, 1e6), nullptr, nullptr},
+      // Numerics
+      {"integrator", G::kNumerics, &C::integrator, "", "Time integrator", {}, "leap_frog", integratorNames},
+      {"dt", G::kNumerics, &C::dt, "s", "Time step (with cfl > 0: the largest step)", above(0, 1e9), nullptr,
+       nullptr},
+      {"cfl", G::kNumerics, &C::cfl, "", "Adaptive dt with this CFL factor (model wcsph; 0: fixed dt)",
+       within(0, 2), nullptr, nullptr},
+      {"end_time", G::kNumerics, &C::endTime, "s",
+       "Simulated time at which the run ends (absolute: a run continued from a snapshot at t ends there too)",
+       above(0, 1e12), nullptr, nullptr},
+      {"threads", G::kNumerics, &C::threads, "",
+       "OpenMP threads: a count from 1 to 1024 (OMP_NUM_THREADS is obeyed too), or auto: start from the cores "
+       "this process may use and the load, and keep the faster of that and fewer threads, timed during the run",
+       {}, nullptr, nullptr},
+      // Output
+      {"output", G::kOutput, &C::output, "", "Output folder", {}, "runs/<name>", nullptr},
+      {"name", G::kOutput, &C::name, "",
+       "Run name: files <name>.pvd, <name>_NNNNN.vtp (letters, digits, _ - .)", {}, "the case file's name",
+       nullptr},
+      {"output_every", G::kOutput, &C::outputEvery, "", "A snapshot every N steps, and at the end",
+       count(1, 1e12), nullptr, nullptr},
+      {"output_interval", G::kOutput, &C::outputInterval, "s",
+       "A snapshot every this many seconds of simulated time, and at the end (instead of output_every)",
+       within(0, 1e12), "off", nullptr},
+      {"progress", G::kOutput, &C::progress, "",
+       "Progress: a live line on a terminal, a line every few seconds otherwise (--no-progress: none)", {},
+       nullptr, nullptr},
+      {"overwrite", G::kOutput, &C::overwrite, "",
+       "Run into a folder that holds another run: its files are removed first", {}, nullptr, nullptr},
+      {"resume", G::kOutput, &C::resume, "",
+       "Continue the run in this folder from its last snapshot, into the same series (no case file needed)", {},
+       "none", nullptr},
+  };
+  return keys;
+}
+
+const KeySpec* findKey(const std::string& name) {
+  for (const KeySpec& k : caseKeys())
+    if (name == k.name) return &k;
+  return nullptr;
+}
+
+std::string keyHelp(const KeySpec& k) {
+  std::string text = k.help;
+  std::vector<std::string> parts;
+  if (*k.unit) parts.push_back(k.unit);
+  const bool numeric = !std::holds_alternative<std::string CaseConfig::*>(k.field) &&
+                       !std::holds_alternative<bool CaseConfig::*>(k.field);
+  if (numeric && (std::isfinite(k.range.lo) || std::isfinite(k.range.hi))) parts.push_back(k.range.text());
+  if (k.choices) {
+    std::string list;
+    for (const std::string& n : k.choices()) list += (list.empty() ? "" : " | ") + n;
+    parts.push_back(list);
+  }
+  if (k.defaultText) parts.push_back(std::string("default: ") + k.defaultText);
+  if (!parts.empty()) {
+    text += " [";
+    for (std::size_t i = 0; i < parts.size(); ++i) text += (i ? "; " : "") + parts[i];
+    text += "]";
+  }
+  return text;
+}
+
+void checkKeyRanges(const CaseConfig& c) {
+  for (const KeySpec& k : caseKeys()) {
+    auto bad = [&](const std::string& value) {
+      throw CaseError(std::string(k.name) + " = " + value + " is out of range: it must be " + k.range.text());
+    };
+    std::visit(
+        [&](auto member) {
+          using T = std::decay_t<decltype(c.*member)>;
+          const T& value = c.*member;
+          if constexpr (std::is_same_v<T, Real> || std::is_same_v<T, long> || std::is_same_v<T, int>) {
+            if (!k.range.contains(static_cast<double>(value))) bad(fmt(static_cast<double>(value)));
+          } else if constexpr (std::is_same_v<T, std::vector<Real>> || std::is_same_v<T, std::vector<long>>) {
+            for (const auto& x : value)
+              if (!k.range.contains(static_cast<double>(x)))
+                throw CaseError(std::string(k.name) + " holds " + fmt(static_cast<double>(x)) +
+                                ": every value must be " + k.range.text());
+          } else if constexpr (std::is_same_v<T, std::string>) {
+            if (!k.choices || value.empty()) return;
+            std::string list;
+            for (const std::string& n : k.choices()) {
+              if (value == n) return;
+              list += (list.empty() ? "\"" : ", \"") + n + "\"";
+            }
+            throw CaseError(std::string(k.name) + " = \"" + value + "\" is not known: allowed are " + list);
+          }
+        },
+        k.field);
+  }
+}
+
+std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
+  return std::visit(
+      [&](auto member) -> std::string {
+        using T = std::decay_t<decltype(c.*member)>;
+        const T& value = c.*member;
+        if constexpr (std::is_same_v<T, bool>) {
+          return value ? "true" : "false";
+        } else if constexpr (std::is_same_v<T, std::string>) {
+          if (value.empty()) return "";
+          std::string q = "\"";
+          for (char ch : value) {
+            if (ch == '"' || ch == '\\') q += '\\';
+            q += ch;
+          }
+          return q + "\"";
+        } else if constexpr (std::is_same_v<T, std::vector<Real>> || std::is_same_v<T, std::vector<long>>) {
+          if (value.empty()) return "";
+          std::string list = "[";
+          for (std::size_t i = 0; i < value.size(); ++i)
+            list += (i ? ", " : "") + shortestDecimal(static_cast<double>(value[i]));
+          return list + "]";
+        } else {
+          return shortestDecimal(static_cast<double>(value));
+        }
+      },
+      k.field);
+}
+
+bool isRunOnlyKey(const KeySpec& k) {
+  const std::string name = k.name;
+  return name == "resume" || name == "overwrite";
+}
+
+std::string resolvedCaseText(const CaseConfig& c) {
+  std::string text =
+      "# The case as this run resolved it: every key with the value used (defaults\n"
+      "# filled in, command-line flags applied). `sph run` on this file repeats the run;\n"
+      "# `sph run --resume` of its folder reads it.\n";
+  KeyGroup group = KeyGroup::kScene;
+  bool first = true;
+  for (const KeySpec& k : caseKeys()) {
+    if (isRunOnlyKey(k)) continue;
+    if (first || k.group != group) text += std::string("\n# ") + groupName(k.group) + "\n";
+    first = false;
+    group = k.group;
+    const std::string value = keyValueText(c, k);
+    text += value.empty() ? std::string("# ") + k.name + ": none\n" : std::string(k.name) + " = " + value + "\n";
+  }
+  return text;
+}
+
+}  // namespace sph
