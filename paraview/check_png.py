@@ -3,6 +3,7 @@
 
     /usr/bin/python3 paraview/check_png.py IMAGE.png [--size W H]
         [--min-pixels N] [--min-span F] [--centroid-box X0 Y0 X1 Y1]
+        [--time-text] [--min-grey N] [--max-grey N]
 
 Checks, printing what it measured:
   * the image has the requested size (--size);
@@ -16,7 +17,12 @@ Checks, printing what it measured:
     particle pixel is matched to its nearest legend colour;
   * the centroid of the particle pixels lies in a box given in fractions of
     the image, origin lower left (--centroid-box 0 0 0.5 0.5 is the lower
-    left quarter).
+    left quarter);
+  * the time annotation is there (--time-text): dark text pixels in the
+    strip above the plot area, left of the legend;
+  * grey (wall) particles: the number of grey pixels in the plot area (not
+    background, not coloured, not the black text) is at least --min-grey
+    or at most --max-grey.
 
 Needs numpy and VTK's Python modules (Debian: python3-paraview, so run it
 with /usr/bin/python3 or pvpython).  Exit status 0 when every check passes,
@@ -38,6 +44,9 @@ import os
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from render import Layout  # noqa: E402  (the layout render.py draws)
 COLOURED = 40         # min channel spread of a particle pixel (grey < this)
+GREY_SPREAD = 12      # max channel spread of a grey pixel
+DARK = 100            # text pixels: every channel below this
+MIN_TEXT_PIXELS = 15  # the time annotation has at least this many
 BACKGROUND_TOL = 30   # max channel difference still counted as background
 
 
@@ -64,6 +73,9 @@ def main(argv=None):
     ap.add_argument("--min-span", type=float, default=None)
     ap.add_argument("--centroid-box", nargs=4, type=float,
                     metavar=("X0", "Y0", "X1", "Y1"))
+    ap.add_argument("--time-text", action="store_true")
+    ap.add_argument("--min-grey", type=int)
+    ap.add_argument("--max-grey", type=int)
     a = ap.parse_args(argv)
 
     img = read_png(a.png)
@@ -95,6 +107,29 @@ def main(argv=None):
     if n < a.min_pixels:
         failures.append("blank: %d particle pixels, expected at least %d"
                         % (n, a.min_pixels))
+
+    if a.time_text:
+        strip = np.zeros((H, W), bool)
+        strip[:int(round((1 - lay.annotation_y) * H)), :legend_x] = True
+        dark = (img.max(axis=2) < DARK) & strip
+        print("time annotation: %d dark pixels above the plot area"
+              % dark.sum())
+        if dark.sum() < MIN_TEXT_PIXELS:
+            failures.append("no time annotation: %d dark pixels above the "
+                            "plot area, expected at least %d"
+                            % (dark.sum(), MIN_TEXT_PIXELS))
+
+    if a.min_grey is not None or a.max_grey is not None:
+        grey = not_bg & (spread <= GREY_SPREAD) & (img.max(axis=2) >= DARK) \
+            & plot
+        g = int(grey.sum())
+        print("grey pixels in the plot area: %d" % g)
+        if a.min_grey is not None and g < a.min_grey:
+            failures.append("%d grey pixels, expected at least %d"
+                            % (g, a.min_grey))
+        if a.max_grey is not None and g > a.max_grey:
+            failures.append("%d grey pixels, expected at most %d"
+                            % (g, a.max_grey))
 
     if n and a.centroid_box:
         rows, cols = np.nonzero(particles)

@@ -29,20 +29,25 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import render  # noqa: E402
 
-# state name -> (case, field, colour preset).  Water cases show pressure;
-# the few-particle cases show the speed (their pressure is zero until two
-# particles meet).
+# state name -> (case, field, colour preset, clip).  Water cases show
+# pressure; the few-particle cases show the speed (their pressure is zero
+# until two particles meet).  clip: the 3D view cut through the middle of
+# the domain (render.add_clip), to show the inside of the fluid.
 STATES = {
-    "water2d": ("dam_break", "pressure", "Turbo"),
-    "dam_break": ("dam_break", "pressure", "Turbo"),
-    "droplet": ("droplet", "pressure", "Turbo"),
-    "block_drop": ("block_drop", "pressure", "Turbo"),
-    "one_particle": ("one_particle", "velocity", "Turbo"),
-    "two_particles": ("two_particles", "velocity", "Turbo"),
-    "three_particles": ("three_particles", "velocity", "Turbo"),
-    "four_particles": ("four_particles", "velocity", "Turbo"),
+    "water2d": ("dam_break", "pressure", "Turbo", False),
+    "dam_break": ("dam_break", "pressure", "Turbo", False),
+    "droplet": ("droplet", "pressure", "Turbo", False),
+    "block_drop": ("block_drop", "pressure", "Turbo", False),
+    "one_particle": ("one_particle", "velocity", "Turbo", False),
+    "two_particles": ("two_particles", "velocity", "Turbo", False),
+    "three_particles": ("three_particles", "velocity", "Turbo", False),
+    "four_particles": ("four_particles", "velocity", "Turbo", False),
+    "dam_break_3d": ("dam_break_3d", "pressure", "Turbo", True),
 }
-STATE_VIEW_SIZE = (800, 800)
+# The view size the states are made for: about the GUI's render view on a
+# 1600x1000 screen (the GUI resizes the view; the camera keeps the domain's
+# height, and explicit points keep their 4-pixel minimum radius).
+STATE_VIEW_SIZE = (840, 520)
 
 
 def make_run(case, scratch, sph):
@@ -58,8 +63,21 @@ def make_run(case, scratch, sph):
             sys.exit("make_states.py: %s failed" % " ".join(cmd))
     else:
         import make_synthetic_run
-        make_synthetic_run.generate(out, case, steps=2)
+        make_synthetic_run.generate(out, case, steps=2,
+                                    dim=case_dimension(case))
     return render.find_pvd(out)
+
+
+def case_dimension(case):
+    """`dimension` of cases/<case>.case (2 when absent)."""
+    path = os.path.join(ROOT, "cases", case + ".case")
+    if os.path.isfile(path):
+        with open(path) as fh:
+            for line in fh:
+                key, _, value = line.split("#")[0].partition("=")
+                if key.strip() == "dimension":
+                    return int(value)
+    return 2
 
 
 def main():
@@ -80,7 +98,7 @@ def main():
     scratch = tempfile.mkdtemp(prefix="sph_states_")
     try:
         for name in a.only or list(STATES):
-            case, field, preset = STATES[name]
+            case, field, preset, clip = STATES[name]
             pvd = make_run(case, scratch, a.sph)
             # The state refers to runs/<case>/<case>.pvd relative to the
             # repository root, where `sph run` writes by default, so that
@@ -97,16 +115,25 @@ def main():
             pv.ResetSession()
             pv._DisableFirstRenderCameraReset()
             pv.LoadPalette("WhiteBackground")
+            # split: every state separates wall particles (the `kind`
+            # array) from the fluid, and still shows runs without `kind`.
             reader, display, view = render.build_default(
                 rel, info, field, "Magnitude", arrays[field], preset,
-                STATE_VIEW_SIZE, "z")
+                STATE_VIEW_SIZE, "z", split=True, clip=clip)
             view.SMProxy.SetAnnotation(render.VIEW_ANNOTATION + "case", case)
             scene = pv.GetAnimationScene()
             scene.UpdateAnimationUsingDataTimeSteps()
             scene.AnimationTime = steps[0][0]
+            # Colour range: that of the scratch run's steps (a readable one
+            # for a constant field: ParaView would make speed 0 at rest a
+            # range 0 .. 1e-38); the GUI grows it as the run plays.
+            lo, hi = render.readable_range(*render.data_range(
+                render.particle_source(reader), field, "Magnitude",
+                [t for t, _ in steps]))
             reader.UpdatePipeline(steps[0][0])
-            display.RescaleTransferFunctionToDataRange(False, True)
             lut = pv.GetColorTransferFunction(field)
+            lut.RescaleTransferFunction(lo, hi)
+            pv.GetOpacityTransferFunction(field).RescaleTransferFunction(lo, hi)
             lut.AutomaticRescaleRangeMode = "Grow and update every timestep"
             reader.SMProxy.SetAnnotation(render.VIEW_ANNOTATION + "case",
                                          case)

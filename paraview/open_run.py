@@ -50,6 +50,11 @@ def open_run():
             state = os.path.join(HERE, "water2d.pvsm")
     render.pv = pv
     reader, display, view = render.load_state(os.path.abspath(state), pvd)
+    if pv.GetLayout(view) is None:
+        # A state without a layout (older ones, or from elsewhere): the GUI
+        # would show no view at all.
+        pv.AssignViewToLayout(view=view, layout=pv.CreateLayout("sph"),
+                              hint=0)
     info = render.RunInfo(steps)
     size = list(view.ViewSize) if view.ViewSize[0] > 0 else [800, 800]
     render.refit_from_state(view, display, info, size, None)

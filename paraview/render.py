@@ -7,13 +7,18 @@ RUN is a run folder written by `sph run ... --output RUN` (it holds one .pvd
 file) or the .pvd file itself.  By default the last output step is rendered
 into RUN/<name>.png with a view built on the fly: particles as point Gaussians
 of radius particle_spacing/2 coloured by pressure, a colour legend, the time,
-white background; a top view for 2D runs, an isometric-like camera for 3D.
+white background; a top view for 2D runs, an isometric-like camera for 3D
+(--clip: only the far half of the domain, cut through its middle, to show
+the inside).  When the run has the point array `kind` (0 fluid, 1 wall
+particle) the wall particles are drawn grey and the colour range is the
+fluid's.
 
 Examples:
     render.py runs/dam_break                          # last step, pressure
     render.py runs/dam_break --field density --time 0 --output t0.png
     render.py runs/dam_break --state paraview/water2d.pvsm --size 800 800
     render.py runs/dam_break --all --output frames/ --mp4   # every step
+    render.py runs/dam_break_3d --state paraview/dam_break_3d.pvsm --time 0.3
 
 Exit status: 0 on success, 1 on any error (with a message on stderr),
 2 on bad command-line usage.
@@ -63,6 +68,11 @@ RADIUS_FACTOR = 0.5                   # Gaussian radius = factor * spacing
 MIN_RADIUS_PX = 2.0                   # ... but at least this many pixels
 MIN_RADIUS_PX_POINTS = 4.0            # ... or this for explicit points
 VIEW_ANNOTATION = "sph."              # prefix of our keys in a view proxy
+KIND_ARRAY = "kind"                   # point array: 0 fluid, 1 wall particle
+WALL_COLOR = (0.7, 0.7, 0.7)          # wall particles: neutral grey
+# Python Calculator expression of split_kind(): `kind`, or 0 without it.
+KIND_EXPRESSION = ('inputs[0].PointData["kind"] if "kind" in '
+                   'inputs[0].PointData.keys() else 0 * inputs[0].Points[:, 0]')
 
 
 class RenderError(Exception):
@@ -122,6 +132,10 @@ def parse_args(argv):
                          "[ZMIN ZMAX] (default: see README)")
     ap.add_argument("--up", choices=("x", "y", "z"), default=None,
                     help="vertical axis of 3D views (default z)")
+    ap.add_argument("--clip", action="store_true",
+                    help="3D runs without --state: show only the far half "
+                         "of the domain, cut through its middle, so that "
+                         "the inside of the fluid shows (no effect in 2D)")
     ap.add_argument("--mp4", nargs="?", const="", metavar="FILE.mp4",
                     help="also join the frames into an mp4 with ffmpeg "
                          "(implies --all; default FILE: next to the frames)")
@@ -394,8 +408,10 @@ def padded(bounds, pad, dimension):
     return b
 
 
-def fit_camera(view, bounds, dimension, size, up="z"):
-    """Frame `bounds` inside the plot box of a size[0] x size[1] image."""
+def fit_camera(view, bounds, dimension, size, up="z", cut=False):
+    """Frame `bounds` inside the plot box of a size[0] x size[1] image.
+    3D: from a corner above the box; cut (a view cut open by add_clip):
+    from lower and more in front, facing the cut."""
     W, H = float(size[0]), float(size[1])
     x0, y0, x1, y1 = plot_box(size)
     bw = max(bounds[1] - bounds[0], 1e-12)
@@ -421,7 +437,8 @@ def fit_camera(view, bounds, dimension, size, up="z"):
     # horizontal axes (right-handed), then the viewing direction
     h1, h2 = [(1, 2), (2, 0), (0, 1)][ax]
     direction = [0.0, 0.0, 0.0]
-    direction[h1], direction[h2], direction[ax] = 1.0, -1.3, 0.9
+    direction[h1], direction[h2], direction[ax] = \
+        (0.5, -1.3, 0.5) if cut else (1.0, -1.3, 0.9)
     n = math.sqrt(sum(c * c for c in direction))
     direction = [c / n for c in direction]
     dz = max(bounds[5] - bounds[4], 1e-12)
@@ -515,18 +532,35 @@ def color_by(display, view, field, component, ncomp, colormap, size):
     return lut
 
 
-def build_default(pvd, info, field, component, ncomp, colormap, size, up):
-    """Reader, display and view of the on-the-fly view.  Also used by
-    make_states.py to build the state files (with a relative pvd)."""
+def build_default(pvd, info, field, component, ncomp, colormap, size, up,
+                  split=False, clip=False):
+    """Reader, particle display and view of the on-the-fly view.  Also used
+    by make_states.py to build the state files (with a relative pvd).
+
+    split: separate fluid from wall particles by the `kind` array (see
+    split_kind); clip: 3D only, show the far half of the domain cut through
+    its middle (see add_clip), so that the inside of the fluid shows."""
     reader = pv.PVDReader(registrationName=os.path.basename(pvd),
                           FileName=pvd)
     view = pv.CreateView("RenderView")
+    # A layout holding the view: without one the GUI loads the state but
+    # shows no view (an empty render area).
+    layout = pv.CreateLayout("sph")
+    pv.AssignViewToLayout(view=view, layout=layout, hint=0)
     style_view(view, info.dimension, size)
-    display = pv.Show(reader, view)
-    display.SetRepresentationType("Point Gaussian")
-    display.GaussianRadius = info.radius(size)
-    display.ShaderPreset = "Plain circle" if info.dimension == 2 else "Sphere"
+    particles = reader
+    if clip and info.dimension == 3:
+        particles = add_clip(reader, info.bounds, up)
+    walls = None
+    if split:
+        particles, walls = split_kind(particles)
+    radius = info.radius(size)
+    display = show_particles(particles, view, info.dimension, radius)
     color_by(display, view, field, component, ncomp, colormap, size)
+    if walls is not None:
+        wdisp = show_particles(walls, view, info.dimension, radius)
+        wdisp.ColorArrayName = ["POINTS", ""]
+        wdisp.AmbientColor = wdisp.DiffuseColor = list(WALL_COLOR)
     label = pv.AnnotateTimeFilter(registrationName="time", Input=reader)
     label.Format = ANNOTATION_FORMAT
     ldisp = pv.Show(label, view)
@@ -542,9 +576,77 @@ def build_default(pvd, info, field, component, ncomp, colormap, size, up):
     ann.SetAnnotation(VIEW_ANNOTATION + "dimension", str(info.dimension))
     ann.SetAnnotation(VIEW_ANNOTATION + "up", up)
     ann.SetAnnotation(VIEW_ANNOTATION + "radius_factor", str(RADIUS_FACTOR))
-    fit_camera(view, padded(info.bounds, info.radius(size), info.dimension),
-               info.dimension, size, up)
+    fit_camera(view, padded(info.bounds, radius, info.dimension),
+               info.dimension, size, up, cut=clip and info.dimension == 3)
     return reader, display, view
+
+
+def show_particles(source, view, dimension, radius):
+    """Particles as point Gaussians: flat discs in 2D, shaded balls in 3D."""
+    d = pv.Show(source, view)
+    d.SetRepresentationType("Point Gaussian")
+    d.GaussianRadius = radius
+    d.ShaderPreset = "Plain circle" if dimension == 2 else "Sphere"
+    return d
+
+
+def set_role(proxy, role):
+    """Tag a pipeline proxy (saved in the state) so that a loaded state's
+    fluid, walls and clip can be found again: see find_role()."""
+    proxy.SMProxy.SetAnnotation(VIEW_ANNOTATION + "role", role)
+
+
+def find_role(role):
+    for src in pv.GetSources().values():
+        key = VIEW_ANNOTATION + "role"
+        if src.SMProxy.HasAnnotation(key) and \
+                src.SMProxy.GetAnnotation(key) == role:
+            return src
+    return None
+
+
+def split_kind(source):
+    """(fluid, walls) sources from the point array `kind` (0 fluid, 1 wall).
+
+    A Python Calculator copies `kind` into `sph_kind`, or writes zeros when
+    the run has no `kind`; two Thresholds then pick the fluid (sph_kind 0)
+    and the walls (sph_kind >= 1).  A Threshold straight on `kind` would
+    drop every particle of a run without the array, so this keeps states
+    working for both kinds of runs, in the GUI too (no script needed)."""
+    calc = pv.PythonCalculator(registrationName="kind", Input=source)
+    calc.Expression = KIND_EXPRESSION
+    calc.ArrayName = "sph_kind"
+    fluid = pv.Threshold(registrationName="fluid", Input=calc)
+    fluid.Scalars = ["POINTS", "sph_kind"]
+    fluid.LowerThreshold, fluid.UpperThreshold = -0.5, 0.5
+    walls = pv.Threshold(registrationName="walls", Input=calc)
+    walls.Scalars = ["POINTS", "sph_kind"]
+    walls.LowerThreshold, walls.UpperThreshold = 0.5, 1e9
+    set_role(fluid, "fluid")
+    set_role(walls, "walls")
+    return fluid, walls
+
+
+def add_clip(source, bounds, up):
+    """Keep the far half of the particles, cut by the vertical plane through
+    the domain's centre that faces the 3D camera (see fit_camera: it looks
+    from the -h2 side), so that the cut shows the inside of the fluid."""
+    clip = pv.Clip(registrationName="clip", Input=source)
+    clip.ClipType = "Plane"
+    clip.Crinkleclip = 1          # whole particles (vertex cells), no cutting
+    clip.Invert = 0               # keep the side the normal points to
+    set_clip_plane(clip, bounds, up)
+    set_role(clip, "clip")
+    return clip
+
+
+def set_clip_plane(clip, bounds, up):
+    h2 = [(1, 2), (2, 0), (0, 1)]["xyz".index(up)][1]
+    normal = [0.0, 0.0, 0.0]
+    normal[h2] = 1.0
+    clip.ClipType.Origin = [(bounds[2 * k] + bounds[2 * k + 1]) / 2
+                            for k in range(3)]
+    clip.ClipType.Normal = normal
 
 
 def domain_outline(view, bounds):
@@ -593,8 +695,15 @@ def load_state(state, pvd):
         raise RenderError("state %s has no render view" % state)
     view = views[0]
     pv.SetActiveView(view)
-    display = pv.GetDisplayProperties(reader, view)
+    display = pv.GetDisplayProperties(particle_source(reader), view)
     return reader, display, view
+
+
+def particle_source(reader):
+    """The source whose display is coloured by the field: the fluid part
+    when the pipeline splits fluid from walls (split_kind), else the
+    reader (or the clip in front of it)."""
+    return find_role("fluid") or find_role("clip") or reader
 
 
 def refit_from_state(view, display, info, size, up_arg):
@@ -610,9 +719,15 @@ def refit_from_state(view, display, info, size, up_arg):
     up = up_arg or get(VIEW_ANNOTATION + "up") or "z"
     factor = float(get(VIEW_ANNOTATION + "radius_factor") or RADIUS_FACTOR)
     radius = info.radius(size, factor)
-    if display.Representation == "Point Gaussian":
-        display.GaussianRadius = radius
-    fit_camera(view, padded(bounds, radius, dim), dim, size, up)
+    for rep in view.Representations:        # fluid and walls alike
+        if "GaussianRadius" in rep.ListProperties() and \
+                rep.Representation == "Point Gaussian":
+            rep.GaussianRadius = radius
+    clip = find_role("clip")
+    if clip is not None:
+        set_clip_plane(clip, bounds, up)
+    fit_camera(view, padded(bounds, radius, dim), dim, size, up,
+               cut=clip is not None and dim == 3)
     for (name, _), src in pv.GetSources().items():
         if src.GetXMLName() == "Box" and name == "domain":
             set_box(src, bounds)
@@ -631,12 +746,14 @@ def current_field(display):
     return ca[1], comp
 
 
-def data_range(reader, field, component, times):
-    """Exact (min, max) of a point array over the given times."""
+def data_range(source, field, component, times):
+    """Exact (min, max) of a point array of source over the given times
+    (source: the coloured particles, so the fluid only when walls are
+    split off)."""
     lo, hi = math.inf, -math.inf
     for t in times:
-        reader.UpdatePipeline(t)
-        arr = reader.PointData[field]
+        source.UpdatePipeline(t)
+        arr = source.PointData[field]
         if arr is None:
             continue
         if arr.GetNumberOfComponents() == 1:
@@ -650,16 +767,20 @@ def data_range(reader, field, component, times):
     return lo, hi
 
 
-def set_color_range(display, lut, a, reader, field, component, times):
-    if a.range is not None:
-        lo, hi = a.range
-    else:
-        lo, hi = data_range(reader, field, component, times)
+def readable_range(lo, hi):
+    """(lo, hi), or for a constant field a range with it in the middle."""
     if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):
-        # A constant field: put it in the middle of a readable range.
         v = 0.5 * (lo + hi)
         d = abs(v) if v else 1.0
         lo, hi = v - d, v + d
+    return lo, hi
+
+
+def set_color_range(display, lut, a, source, field, component, times):
+    if a.range is not None:
+        lo, hi = a.range
+    else:
+        lo, hi = readable_range(*data_range(source, field, component, times))
     lut.RescaleTransferFunction(lo, hi)
     pwf = pv.GetOpacityTransferFunction(field)
     pwf.RescaleTransferFunction(lo, hi)
@@ -711,9 +832,12 @@ def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
     else:
         field = field_arg or DEFAULT_FIELD
         comp = a.component
+        # Walls split off only when the run has `kind`: otherwise the
+        # pipeline is the plain one.
         reader, display, view = build_default(
             pvd, info, field, a.component, arrays[field],
-            a.colormap or DEFAULT_COLORMAP, size, up)
+            a.colormap or DEFAULT_COLORMAP, size, up,
+            split=KIND_ARRAY in arrays, clip=a.clip)
         lut = pv.GetColorTransferFunction(field)
 
     view.StillRender()
@@ -726,7 +850,7 @@ def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
         view.ViewTime = t
         reader.UpdatePipeline(t)
 
-    set_color_range(display, lut, a, reader, field, comp,
+    set_color_range(display, lut, a, particle_source(reader), field, comp,
                     [steps[i][0] for i in indices])
     written = []
     for i, out in zip(indices, outputs):
@@ -776,6 +900,9 @@ def main(argv=None):
             raise RenderError("--mp4 needs ffmpeg, which is not installed "
                               "(apt-get install ffmpeg); or render the "
                               "frames with --all and join them elsewhere")
+        if a.clip and a.state:
+            sys.stderr.write("render.py: note: --clip is ignored with "
+                             "--state (the state decides)\n")
         indices = choose_steps(a, steps)
         outputs = output_paths(a, pvd, steps, indices)
         ensure_paraview(argv)

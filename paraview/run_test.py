@@ -3,6 +3,7 @@
 
     python3 paraview/run_test.py TEST --workdir DIR [--sph SPH]
         [--xvfb-run PATH] [--pvpython PATH] [--state FILE.pvsm]
+        [--paraview PATH] [--import-cmd PATH] [--open-run] [--no-layout]
 
 TEST is one of:
   snapshot     run dam_break for 0.01 s, render its first and last output
@@ -18,6 +19,16 @@ TEST is one of:
                missing array, bad state, no ParaView) and its re-run under
                xvfb-run when started by a plain python3 without a display
   checker      check_png.py rejects a blank image and a one-colour render
+  gui          open --state in the real ParaView GUI under Xvfb, in a folder
+               holding a fresh runs/<case>/ of its case, and check the
+               screenshots with gui_check.py (particles, legend, time);
+               with --open-run the GUI runs open_run.py on such a run
+               instead; with --no-layout the state's layout is removed
+               first and the check must FAIL (no render view) although the
+               state loaded
+  walls        render a synthetic run with wall particles (the `kind`
+               array): walls grey and the colour range the fluid's, with
+               and without a state; the same run without `kind`: no grey
 
 Exit status 0 when the test passes.
 """
@@ -33,6 +44,8 @@ import xml.etree.ElementTree as ET
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 RENDER = os.path.join(HERE, "render.py")
+GUI_CHECK = os.path.join(HERE, "gui_check.py")
+OPEN_RUN = os.path.join(HERE, "open_run.py")
 SIZE = ["480", "480"]
 
 
@@ -284,9 +297,106 @@ def t_checker(e):
     e.check(flat, "--centroid-box", "0.5", "0", "1", "1", expect_ok=False)
 
 
+def strip_layouts(state, out):
+    """Write the state without its layouts: what the states were before,
+    when the GUI loaded them but showed no view."""
+    tree = ET.parse(state)
+    sm = tree.getroot().find("ServerManagerState")
+    for el in list(sm):
+        if (el.tag == "Proxy" and el.get("type") == "ViewLayout") or \
+                (el.tag == "ProxyCollection" and el.get("name") == "layouts"):
+            sm.remove(el)
+    tree.write(out)
+
+
+def gui_min_pixels(case):
+    """Particle pixels the GUI must show: a water case fills hundreds of
+    discs, the few-particle cases a few small ones."""
+    return 1000 if case in ("dam_break", "droplet", "block_drop",
+                            "dam_break_3d") else 30
+
+
+def t_gui(e):
+    e.need_tools()
+    for name, path in (("paraview", e.a.paraview),
+                       ("import (ImageMagick)", e.a.import_cmd)):
+        if not path or not os.path.exists(path):
+            raise TestFailure("%s not found: run scripts/setup.sh" % name)
+    state = os.path.abspath(e.a.state)
+    case = state_case(state)
+    # A folder standing in for the repository root: the state refers to
+    # runs/<case>/<case>.pvd relative to the GUI's working folder.
+    root = os.path.join(e.work, "root")
+    run_dir = os.path.join(root, "runs", case)
+    e.sph_run(case, run_dir, "--end_time", "0.002")   # t = 0 is shown
+    cmd = [e.a.xvfb_run, "-a", "-s", "-screen 0 1600x1000x24",
+           sys.executable, GUI_CHECK, "--cwd", root,
+           "--paraview", e.a.paraview, "--import-cmd", e.a.import_cmd,
+           "--min-pixels", str(gui_min_pixels(case)), "--timeout", "100",
+           "--output", os.path.join(e.work, "screen.png")]
+    env = None
+    if e.a.open_run:
+        # any run folder, any name: SPH_RUN names it, SPH_STATE the state
+        other = os.path.join(root, "my_run")
+        os.rename(run_dir, other)
+        env = dict(os.environ, SPH_RUN=other, SPH_STATE=state,
+                   SPH_PARAVIEW_DIR=HERE)
+        cmd += ["--script", OPEN_RUN]
+    elif e.a.no_layout:
+        bare = os.path.join(e.work, "no_layout.pvsm")
+        strip_layouts(state, bare)
+        cmd += [bare, "--settle", "10"]
+    else:
+        cmd += [state]
+    code, out = run(cmd, expect_ok=False, env=env, timeout=140)
+    if e.a.no_layout:
+        if code == 0:
+            raise TestFailure("gui_check.py passed a state without a layout")
+        if "no render view" not in out or "sources listed" not in out:
+            raise TestFailure("expected the state to load (sources listed) "
+                              "and no render view")
+    elif code != 0:
+        raise TestFailure("the GUI did not show the particles")
+
+
+def t_walls(e):
+    e.need_tools(sph=False)
+    import make_synthetic_run
+    # 2D: on the fly and with a state; 3D on the fly.  The wall particles'
+    # pressure is 20x the fluid's: coloured by it, the fluid would use a
+    # sliver of the colour map (--min-span fails), and no grey would show.
+    # 3D: cut open (the walls hide the fluid), on the fly and with the 3D
+    # state.
+    cases = [("walls2d", 2, 0.02, []),
+             ("walls2d", 2, 0.02, ["--state", "water2d.pvsm"]),
+             ("walls3d", 3, 0.05, ["--clip"]),
+             ("walls3d", 3, 0.05, ["--state", "dam_break_3d.pvsm"])]
+    for k, (name, dim, dx, extra) in enumerate(cases):
+        run_dir = os.path.join(e.work, name)
+        if not os.path.isdir(run_dir):
+            make_synthetic_run.generate(run_dir, name, steps=2, dim=dim,
+                                        dx=dx, walls=True)
+        png = os.path.join(e.work, "%s_%d.png" % (name, k))
+        if extra[:1] == ["--state"]:
+            extra = ["--state", os.path.join(HERE, extra[1])]
+        e.render([run_dir, "--size"] + SIZE + ["--output", png] + extra)
+        e.check(png, "--size", *SIZE, "--min-span", "0.5",
+                "--min-grey", "3000")
+    # Without `kind` the walls are particles like any other: coloured, the
+    # colour range theirs, no grey.
+    bare = os.path.join(e.work, "nokind")
+    make_synthetic_run.generate(bare, "nokind", steps=2, walls=True,
+                                kind=False)
+    png = os.path.join(e.work, "nokind.png")
+    e.render([bare, "--size"] + SIZE + ["--output", png])
+    e.check(png, "--size", *SIZE, "--max-grey", "2000")
+    e.check(png, "--min-grey", "3000", expect_ok=False)
+
+
 TESTS = {"snapshot": t_snapshot, "state": t_state,
          "default-view": t_default_view, "synthetic-3d": t_synthetic_3d,
-         "errors": t_errors, "checker": t_checker}
+         "errors": t_errors, "checker": t_checker, "gui": t_gui,
+         "walls": t_walls}
 
 
 def main():
@@ -297,6 +407,10 @@ def main():
     ap.add_argument("--xvfb-run", default=shutil.which("xvfb-run"))
     ap.add_argument("--pvpython", default=shutil.which("pvpython"))
     ap.add_argument("--state")
+    ap.add_argument("--paraview", default=shutil.which("paraview"))
+    ap.add_argument("--import-cmd", default=shutil.which("import"))
+    ap.add_argument("--open-run", action="store_true")
+    ap.add_argument("--no-layout", action="store_true")
     a = ap.parse_args()
     sys.path.insert(0, HERE)
     e = Env(a)
