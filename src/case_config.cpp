@@ -53,6 +53,7 @@ void validateCase(const CaseConfig& c) {
       throw CaseError("integrator = \"" + c.integrator + "\": model seed_wcsph uses leap_frog only");
   }
   if (c.eos == "tait") requirePositive("c0", c.c0);
+  validateWallsAndDensity(c);
   if (c.name.empty() || c.name == "." || c.name == ".." ||
       c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
     throw CaseError("name = \"" + c.name + "\" is not allowed: use letters, digits, '_', '-' and '.' (not . or ..)");

@@ -25,6 +25,11 @@ std::vector<std::string> eosNames() { return methodNames(eosMethods()); }
 std::vector<std::string> viscosityNames() { return methodNames(viscosityMethods()); }
 std::vector<std::string> integratorNames() { return methodNames(integratorMethods<2>()); }
 std::vector<std::string> modelNames() { return methodNames(modelMethods()); }
+std::vector<std::string> boundaryNames() { return methodNames(boundaryMethods()); }
+std::vector<std::string> slipNames() { return {"no_slip", "free_slip"}; }
+std::vector<std::string> densityNames() { return methodNames(densityMethods()); }
+std::vector<std::string> diffusionNames() { return {"fourtakas", "molteni"}; }
+std::vector<std::string> negativePressureNames() { return {"none", "clamp"}; }
 
 std::string fmt(double x) {
   std::ostringstream s;
@@ -74,7 +79,7 @@ const std::vector<KeySpec>& caseKeys() {
        nullptr, nullptr},
       {"domain_max", G::kScene, &C::domainMax, "m",
        "Upper corner of the domain box (D values; more than 2h above domain_min)", coordinate(), nullptr, nullptr},
-      {"walls", G::kScene, &C::walls, "", "Damped reflecting walls on the domain box (--no-walls: none)", {},
+      {"walls", G::kScene, &C::walls, "", "The domain box has walls (--no-walls: none); boundary says how they act", {},
        nullptr, nullptr},
       {"block_min", G::kScene, &C::blockMin, "m", "Lattice block of fluid: lower corner (D values)", coordinate(),
        "none", nullptr},
@@ -129,6 +134,35 @@ const std::vector<KeySpec>& caseKeys() {
        nullptr, nullptr},
       {"restitution", G::kPhysics, &C::restitution, "",
        "Reflecting walls: the normal velocity becomes -e times itself", within(0, 1), nullptr, nullptr},
+      // Walls and density (model wcsph)
+      {"boundary", G::kPhysics, &C::boundary, "",
+       "How the walls act: reflecting (clamp and reflect), or wall particles: dummy (Adami 2012), dynamic "
+       "(Crespo 2007, needs density continuity), repulsive (Liu 2012)",
+       {}, nullptr, boundaryNames},
+      {"wall_layers", G::kPhysics, &C::wallLayers, "", "Layers of dummy or dynamic wall particles (0: as many as the kernel support needs)",
+       count(0, 100), "as many as needed", nullptr},
+      {"wall_layers_override", G::kPhysics, &C::wallLayersOverride, "",
+       "Allow fewer wall layers than the support needs (the fluid then leaks; for tests of leakage)", {}, nullptr,
+       nullptr},
+      {"lid", G::kPhysics, &C::lid, "", "Wall particles on the top of the box too (a closed tank)", {}, nullptr, nullptr},
+      {"wall_slip", G::kPhysics, &C::wallSlip, "", "Dummy and dynamic walls in the viscous term", {}, nullptr, slipNames},
+      {"obstacle_min", G::kScene, &C::obstacleMin, "m", "Solid boxes of wall particles inside the domain: lower corners, D values per box",
+       coordinate(), "none", nullptr},
+      {"obstacle_max", G::kScene, &C::obstacleMax, "m", "Solid boxes: upper corners, D values per box", coordinate(), "none",
+       nullptr},
+      {"density", G::kPhysics, &C::density, "",
+       "Density: summation (rho = sum m W) or continuity (d rho/dt = sum m v.grad W, integrated)", {}, nullptr,
+       densityNames},
+      {"delta", G::kPhysics, &C::delta, "", "Density diffusion coefficient delta (density continuity; 0: off; 0.1 usual)",
+       within(0, 1), nullptr, nullptr},
+      {"diffusion", G::kPhysics, &C::diffusion, "",
+       "Density diffusion: fourtakas (keeps a hydrostatic state; Fourtakas 2019) or molteni (Molteni & Colagrossi 2009)",
+       {}, nullptr, diffusionNames},
+      {"hydrostatic_start", G::kPhysics, &C::hydrostaticStart, "",
+       "Start the fluid at rest in hydrostatic balance: density from the EOS inverse of rho0 g (H - y), H the top of its block",
+       {}, nullptr, nullptr},
+      {"negative_pressure", G::kPhysics, &C::negativePressure, "", "Negative pressures: none (kept) or clamp (set to 0)",
+       {}, nullptr, negativePressureNames},
       {"xsph", G::kPhysics, &C::xsph, "", "XSPH epsilon (model wcsph; 0: off)", within(0, 1), nullptr, nullptr},
       {"damping", G::kPhysics, &C::damping, "1/s", "Linear damping nu in a = -nu v (model wcsph; 0: off)",
        within(0, 1e6), nullptr, nullptr},

@@ -1,8 +1,11 @@
 #include "sph/particle_sources.hpp"
 
 #include "sph/io/vtp_io.hpp"
+#include "sph/methods.hpp"
 #include "sph/toy_star.hpp"
+#include "sph/wall_particles.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -244,7 +247,50 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
       where << "particle " << i << " at (" << P.x[i].transpose().format(Eigen::IOFormat(Eigen::StreamPrecision, 0, ", ")) << ") lies outside the domain [domain_min, domain_max]";
       throw CaseError(where.str());
     }
-  P.resize(P.x.size());
+  // Fluid bodies must not overlap a solid one.
+  for (std::size_t k = 0; k + D <= c.obstacleMin.size(); k += D)
+    for (std::size_t i = 0; i < P.x.size(); ++i) {
+      bool in = true;
+      for (int d = 0; d < D; ++d)
+        in &= P.x[i][d] > c.obstacleMin[k + static_cast<std::size_t>(d)] &&
+              P.x[i][d] < c.obstacleMax[k + static_cast<std::size_t>(d)];
+      if (in)
+        throw CaseError("the fluid overlaps obstacle " + std::to_string(k / D + 1) +
+                        " (obstacle_min/obstacle_max): fluid particle " + std::to_string(i) + " lies inside it");
+    }
+  const std::size_t nFluid = P.x.size();
+  const bool wcsph = c.model == "wcsph";
+  // wcsph: masses from the lattice, m = rho0 dx^D (the seed scales them to
+  // a mean density of rho0, as the seed says).
+  if (wcsph && c.spacing > 0 && !s.massesGiven) {
+    for (Real& m : P.m) m = c.rho0 * std::pow(c.spacing, D);
+    s.massesGiven = true;
+  }
+  // Wall particles, after the fluid.
+  if (wcsph && c.walls && c.boundary != "reflecting") {
+    const int layers = c.wallLayers > 0 ? static_cast<int>(c.wallLayers) : wallLayersNeeded(c);
+    const Real mWall = c.rho0 * std::pow(c.spacing, D);
+    for (const Vec<D>& x : wallParticlePositions<D>(c, layers)) addParticle<D>(P, x, Vec<D>::Zero(), mWall);
+  }
+  P.resize(P.x.size(), nFluid);
+  // Density: rho0, or the hydrostatic balance p = rho0 g (H - y) with H the
+  // top of the fluid block. The lattice stays as it is and the masses carry
+  // the compression (m = rho dx^D), so that every particle's volume m/rho is
+  // still dx^D: the state is in balance as it starts, with nothing to settle
+  // (compressing densities alone would leave the pressure gradient short by
+  // rho/rho0). Summation density and the seed recompute rho anyway.
+  std::fill(P.rho.begin(), P.rho.end(), c.rho0);
+  if (wcsph && c.hydrostaticStart) {
+    const CaseConfig resolved = withDefaults(c);
+    const EquationOfState eos = findMethod(eosMethods(), resolved.eos)->make(resolved);
+    const Real H = c.blockMax[static_cast<std::size_t>(D - 1)];
+    const bool dummyWalls = c.boundary == "dummy";
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      const Real p = std::max(Real(0), c.rho0 * c.g * (H - P.x[i][D - 1]));
+      P.rho[i] = std::visit([&](const auto& e) { return e.density(p); }, eos);
+      if (i < nFluid || !dummyWalls) P.m[i] *= P.rho[i] / c.rho0;
+    }
+  }
   return s;
 }
 

@@ -279,7 +279,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   const std::size_t n = init.particles.size();
   const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
   std::size_t nearWall = 0;
-  if (c.walls && !resuming)
+  if (c.walls && c.boundary == "reflecting" && !resuming)
     for (const auto& x : init.particles.x)
       nearWall += ((x.array() - lo.array()).minCoeff() < c.h || (hi.array() - x.array()).minCoeff() < c.h);
 

@@ -36,7 +36,20 @@ struct CaseConfig {
   Real mu = 1;
   Real g = 9.81;
   Real restitution = 0.5;
-  bool walls = true;
+  bool walls = true;        // the domain box has walls
+
+  // walls and density (model wcsph)
+  std::string boundary = "reflecting";  // reflecting | dummy | dynamic | repulsive
+  long wallLayers = 0;                  // layers of wall particles (0: as many as the support needs)
+  bool wallLayersOverride = false;      // allow fewer layers than the support needs
+  bool lid = false;                     // wall particles on the top of the box too
+  std::string wallSlip = "no_slip";     // no_slip | free_slip
+  std::vector<Real> obstacleMin, obstacleMax;  // boxes of wall particles inside the domain, D values each
+  std::string density = "summation";    // summation | continuity
+  Real delta = 0;                       // delta-SPH coefficient (0: off)
+  std::string diffusion = "fourtakas";  // fourtakas | molteni
+  bool hydrostaticStart = false;        // start at rest in hydrostatic balance
+  std::string negativePressure = "none";  // none | clamp
 
   // wcsph: choices by name ("" = the model's default)
   std::string kernel;       // cubic_spline | wendland_c2 | gaussian | muller
@@ -101,6 +114,9 @@ constexpr double kMaxCellsPerAxis = 1e6;
 constexpr double kMaxSteps = 1e12;
 
 void validateCase(const CaseConfig& c);
+
+// The wall-particle and density keys (src/case_physics.cpp), part of validateCase.
+void validateWallsAndDensity(const CaseConfig& c);
 
 // The thread count a validated `threads` key asks for (0: auto).
 int requestedThreads(const CaseConfig& c);

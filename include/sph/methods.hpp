@@ -11,6 +11,7 @@
 #include "sph/case_config.hpp"
 #include "sph/integrators/integrators.hpp"
 #include "sph/kernels/kernels.hpp"
+#include "sph/models/wcsph.hpp"
 #include "sph/passes/wcsph_forces.hpp"
 #include "sph/terms/equation_of_state.hpp"
 
@@ -102,6 +103,34 @@ const std::vector<Method<Integrator<D>>>& integratorMethods() {
     });
     return rows;
   }();
+  return m;
+}
+
+// Wall treatments. "reflecting" builds no wall particles: the scene clamps
+// and reflects particles at the walls (boundaries/damped_reflecting_walls.hpp).
+inline const std::vector<Method<WallTreatment>>& boundaryMethods() {
+  static const std::vector<Method<WallTreatment>> m = {
+      {"reflecting", "damped reflecting walls: clamp at distance h, normal velocity -e times itself (the seed's)",
+       {"restitution"}, [](const CaseConfig&) { return WallTreatment::kNoParticles; }},
+      {"dummy", "dummy wall particles with pressure extrapolated from the fluid (Adami, Hu & Adams 2012)",
+       {"wall_layers", "wall_layers_override", "lid", "wall_slip", "obstacle_min", "obstacle_max"},
+       [](const CaseConfig&) { return WallTreatment::kDummy; }},
+      {"dynamic", "dynamic boundary particles: density by continuity, pressure by the EOS (Crespo et al. 2007)",
+       {"wall_layers", "wall_layers_override", "lid", "wall_slip", "obstacle_min", "obstacle_max"},
+       [](const CaseConfig&) { return WallTreatment::kDynamic; }},
+      {"repulsive", "one layer of repulsive particles at dx/2 on the wall (seed document 004, after Liu et al. 2012)",
+       {"lid", "obstacle_min", "obstacle_max"}, [](const CaseConfig&) { return WallTreatment::kRepulsive; }},
+  };
+  return m;
+}
+
+inline const std::vector<Method<DensityTreatment>>& densityMethods() {
+  static const std::vector<Method<DensityTreatment>> m = {
+      {"summation", "rho_i = sum_j m_j W_ij, self term included", {},
+       [](const CaseConfig&) { return DensityTreatment::kSummation; }},
+      {"continuity", "d rho_i/dt = sum_j m_j v_ij . grad W_ij, integrated, with density diffusion (delta)",
+       {"delta", "diffusion"}, [](const CaseConfig&) { return DensityTreatment::kContinuity; }},
+  };
   return m;
 }
 

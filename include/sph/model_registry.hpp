@@ -47,6 +47,13 @@ Model<D> makeModel(const CaseConfig& c) {
   if (c.g != 0) spec.bodies.gravity = UniformGravity<D>{c.g};
   if (c.starMass > 0) spec.bodies.star = StarAttraction<D>{starLambda(c)};
   if (c.damping > 0) spec.bodies.damping = LinearDamping<D>{c.damping};
+  spec.density = methodRow(densityMethods(), "density", c.density).make(c);
+  spec.delta = c.delta;
+  spec.hydrostaticDiffusion = c.diffusion == "fourtakas";
+  spec.walls = c.walls ? methodRow(boundaryMethods(), "boundary", c.boundary).make(c) : WallTreatment::kNoParticles;
+  spec.noSlip = c.wallSlip == "no_slip";
+  spec.spacing = c.spacing;
+  spec.clampNegative = c.negativePressure == "clamp";
   return makeWcsph<D>(spec);
 }
 
@@ -63,11 +70,16 @@ Scene<D> makeScene(const CaseConfig& c, InitialState<D> init,
                    Real startTime = std::numeric_limits<Real>::quiet_NaN()) {
   const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
   std::optional<DampedReflectingWalls<D>> walls;
-  if (c.walls)
+  if (c.walls && c.boundary == "reflecting")
     walls = DampedReflectingWalls<D>{lo, hi, c.h, c.restitution,
                                      c.model == "seed_wcsph" ? ReflectionRule::kSeed : ReflectionRule::kApproaching};
   if (std::isnan(startTime)) startTime = init.startTime;
-  return Scene<D>(std::move(init.particles), makeModel<D>(c), walls, StateCheck<D>{lo, hi},
+  StateCheck<D> check(lo, hi);
+  check.wallParticles = c.walls && c.boundary != "reflecting";
+  for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D)
+    check.obstacles.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
+                               toVec<D>({c.obstacleMax.begin() + k, c.obstacleMax.begin() + k + D})});
+  return Scene<D>(std::move(init.particles), makeModel<D>(c), walls, check,
                   TimeStepControl{c.dt, c.cfl, c.endTime}, startTime, makeIntegrator<D>(c.integrator));
 }
 

@@ -110,6 +110,12 @@ inline Pair<D> makePair(std::uint32_t i, std::uint32_t j, const Vec<D>& xi, cons
   return c;
 }
 
+// Which parts of the loop run, decided per evaluation.
+struct PairLoopParts {
+  bool wallPairs = true;       // fluid particles see their wall neighbours
+  bool wallParticles = false;  // wall particles get rates of their own
+};
+
 // Returns the term bits of the packs it ran.
 //   epilogue(i, P, rates)       writes particle i's rates (fluid particles)
 //   wallEpilogue(i, P, rates)   the same for wall particles
@@ -118,11 +124,11 @@ template <int D, class Kernel, class FluidPairs, class WallPairs, class WallPart
 unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
                      const FluidPairs& fluidPairs, const WallPairs& wallPairs,
                      const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
-                     const WallEpilogue& wallEpilogue) {
+                     const WallEpilogue& wallEpilogue, PairLoopParts parts = {}) {
   const std::size_t n = P.size(), nFluid = P.fluidCount();
   const Real invSupport = 1 / support;
-  constexpr bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0;
-  const bool walls = P.hasWalls();
+  const bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0 && parts.wallParticles && P.hasWalls();
+  const bool walls = P.hasWalls() && parts.wallPairs;
 #pragma omp parallel if (n >= kMinParallelSize)
   {
     auto fluidParticle = [&](std::size_t i, auto byKind) {
@@ -145,7 +151,7 @@ unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const 
 #pragma omp for schedule(static) nowait
       for (std::size_t i = 0; i < nFluid; ++i) fluidParticle(i, std::false_type{});
     }
-    if constexpr (wallParticles) {
+    if (wallParticles) {
 #pragma omp for schedule(static) nowait
       for (std::size_t i = nFluid; i < n; ++i) {
         PairRates<D> r;
@@ -158,7 +164,8 @@ unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const 
     }
   }
   unsigned bits = packBits(fluidPairs);
-  if (P.hasWalls()) bits |= packBits(wallPairs) | packBits(wallParticlePairs);
+  if (walls) bits |= packBits(wallPairs);
+  if (wallParticles) bits |= packBits(wallParticlePairs);
   return bits;
 }
 

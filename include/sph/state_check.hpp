@@ -12,25 +12,33 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace sph {
 
 struct StateFailure {
   std::size_t index;      // sorted position
   std::int64_t id;        // particle id
-  std::string quantity;   // "position", "velocity", "acceleration", "density", "domain"
+  std::string quantity;   // "position", "velocity", "acceleration", "density", "domain", "wall"
   std::string detail;
 };
 
 template <int D>
 struct StateCheck {
+  StateCheck(const Vec<D>& lo_, const Vec<D>& hi_) : lo(lo_), hi(hi_) {}
+
   Vec<D> lo, hi;
+  bool wallParticles = false;  // the box's walls are particles: a fluid particle outside it went through one
+  struct Box {
+    Vec<D> lo, hi;
+  };
+  std::vector<Box> obstacles;  // solid boxes a fluid particle must not enter
 
   bool ok(const Particles<D>& P, std::size_t i) const {
     const Vec<D>& x = P.x[i];
-    return x.allFinite() && P.v[i].allFinite() && P.a[i].allFinite() &&
-           std::isfinite(P.rho[i]) && (x.array() >= lo.array()).all() &&
-           (x.array() <= hi.array()).all();
+    const bool finite = x.allFinite() && P.v[i].allFinite() && P.a[i].allFinite() && std::isfinite(P.rho[i]);
+    if (i >= P.fluidCount()) return finite;  // wall particles live outside the box
+    return finite && inside(x, lo, hi) && !inObstacle(x);
   }
 
   StateFailure describe(const Particles<D>& P, std::size_t i) const {
@@ -49,6 +57,14 @@ struct StateCheck {
     } else if (!std::isfinite(P.rho[i])) {
       f.quantity = "density";
       f.detail = "density " + std::to_string(P.rho[i]) + " is not finite";
+    } else if (inObstacle(P.x[i])) {
+      f.quantity = "wall";
+      f.detail = "fluid particle at " + vecString(P.x[i]) + " is inside an obstacle: it leaked through its wall "
+                 "particles (too few wall layers, or too large a dt)";
+    } else if (wallParticles) {
+      f.quantity = "wall";
+      f.detail = "fluid particle at " + vecString(P.x[i]) + " is outside the domain " + vecString(lo) + " - " +
+                 vecString(hi) + ": it leaked through the wall particles (too few wall layers, or too large a dt)";
     } else {
       f.quantity = "domain";
       f.detail = "position " + vecString(P.x[i]) + " is outside the domain " +
@@ -58,6 +74,15 @@ struct StateCheck {
   }
 
  private:
+  static bool inside(const Vec<D>& x, const Vec<D>& a, const Vec<D>& b) {
+    return (x.array() >= a.array()).all() && (x.array() <= b.array()).all();
+  }
+  bool inObstacle(const Vec<D>& x) const {
+    for (const Box& b : obstacles)
+      if ((x.array() > b.lo.array()).all() && (x.array() < b.hi.array()).all()) return true;
+    return false;
+  }
+
   static std::string vecString(const Vec<D>& v) {
     std::string s = "(";
     for (int d = 0; d < D; ++d) s += (d ? ", " : "") + std::to_string(v[d]);

@@ -7,3 +7,13 @@
 #include "sph/kernels/gaussian.hpp"
 #include "sph/kernels/muller.hpp"
 #include "sph/kernels/wendland_c2.hpp"
+
+#include <variant>
+
+namespace sph {
+
+// The kernel of a wcsph model, chosen by name (methods.hpp).
+template <int D>
+using Kernel = std::variant<CubicSpline<D>, WendlandC2<D>, Gaussian<D>, Muller<D>>;
+
+}  // namespace sph

@@ -5,6 +5,7 @@
 #include "sph/passes/equation_of_state.hpp"
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/summation_density.hpp"
+#include "sph/passes/wall_passes.hpp"
 #include "sph/passes/wcsph_forces.hpp"
 
 #include <variant>
@@ -12,6 +13,7 @@
 namespace sph {
 
 template <int D>
-using Pass = std::variant<SummationDensityPass<D>, EquationOfStatePass<D>, SeedForcePass<D>, WcsphForcePass<D>>;
+using Pass = std::variant<SummationDensityPass<D>, EquationOfStatePass<D>, AdamiWallsPass<D>, SeedForcePass<D>,
+                          WcsphForcePass<D>, RepulsiveWallsPass<D>>;
 
 }  // namespace sph

@@ -21,6 +21,12 @@
 
 namespace sph {
 
+enum class DensityTreatment { kSummation, kContinuity };
+// How the domain's walls are modelled: none or reflecting (no wall
+// particles; the reflecting walls are the scene's constraint), or wall
+// particles: dummy (Adami 2012), dynamic (Crespo 2007), repulsive (Liu 2012).
+enum class WallTreatment { kNoParticles, kDummy, kDynamic, kRepulsive };
+
 // Everything a wcsph model is made of, already resolved from names.
 template <int D>
 struct WcsphSpec {
@@ -30,6 +36,13 @@ struct WcsphSpec {
   Real restDensity = 1000;
   BodyForces<D> bodies;
   Real xsphEpsilon = 0;
+  DensityTreatment density = DensityTreatment::kSummation;
+  Real delta = 0;              // delta-SPH coefficient (continuity; 0: off)
+  bool hydrostaticDiffusion = true;  // fourtakas (true) or molteni (false)
+  WallTreatment walls = WallTreatment::kNoParticles;
+  bool noSlip = true;          // dummy/dynamic walls in the viscous term
+  Real spacing = 0;            // fluid spacing dx (repulsive walls)
+  bool clampNegative = false;  // negative_pressure = clamp
 };
 
 template <int D>
@@ -38,10 +51,15 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   info.name = "wcsph";
   info.support = std::visit([](const auto& k) { return k.support(); }, s.kernel);
   info.smoothingLength = std::visit([](const auto& k) { return k.h(); }, s.kernel);
+  const Real h = info.smoothingLength;
   info.restDensity = s.restDensity;
   info.eos = s.eos;
   info.bodies = s.bodies;
-  info.termNames = {"summation_density", "equation_of_state", "symmetric_pressure"};
+  const bool continuity = s.density == DensityTreatment::kContinuity;
+  const Real c0 = std::visit([&](const auto& e) { return e.soundSpeed(s.restDensity); }, s.eos);
+  const Vec<D> g = s.bodies.gravity ? s.bodies.gravity->vector() : Vec<D>::Zero();
+  info.termNames = {continuity ? "continuity_density" : "summation_density", "equation_of_state", "symmetric_pressure"};
+  if (continuity) info.needs |= fieldBit(kFieldDrho);
   if (const auto* l = std::get_if<LaplacianViscosityChoice>(&s.viscosity)) {
     info.kinematicViscosity = l->mu / s.restDensity;
     info.termNames.push_back("laplacian_viscosity");
@@ -57,10 +75,40 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.needs |= fieldBit(kFieldVXsph);
     info.termNames.push_back("xsph");
   }
-  const auto density = std::visit(
-      [](const auto& k) { return DensityKernelChoice<D>(DensityKernel<std::decay_t<decltype(k)>>{k}); }, s.kernel);
-  return Model<D>(info, {SummationDensityPass<D>{density, s.eos},
-                         WcsphForcePass<D>{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon}});
+
+  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true};
+  forces.continuity = continuity;
+  if (continuity && s.delta > 0) {
+    forces.diffusion.coefficient = 2 * s.delta * h * c0;
+    forces.diffusion.eta2 = 0.01 * h * h;
+    if (s.hydrostaticDiffusion) forces.diffusion.hydrostatic = s.restDensity / (c0 * c0) * g;
+    info.termNames.push_back(s.hydrostaticDiffusion ? "density_diffusion_fourtakas" : "density_diffusion_molteni");
+  }
+  forces.wallPairs = s.walls != WallTreatment::kRepulsive;
+  forces.wallDensityRates = s.walls == WallTreatment::kDynamic;
+  forces.wallViscosity = s.noSlip || s.walls == WallTreatment::kDummy;
+  if (s.walls == WallTreatment::kDummy || s.walls == WallTreatment::kDynamic) info.needs |= fieldBit(kFieldVWall);
+
+  std::vector<Pass<D>> passes;
+  if (continuity) {
+    passes.push_back(EquationOfStatePass<D>{s.eos, s.walls == WallTreatment::kDynamic, s.clampNegative});
+  } else {
+    const auto density = std::visit(
+        [](const auto& k) { return DensityKernelChoice<D>(DensityKernel<std::decay_t<decltype(k)>>{k}); }, s.kernel);
+    passes.push_back(
+        SummationDensityPass<D>{density, s.eos, s.walls != WallTreatment::kRepulsive, s.clampNegative});
+  }
+  if (s.walls == WallTreatment::kDummy) {
+    passes.push_back(AdamiWallsPass<D>{s.kernel, s.eos, g, s.noSlip, s.restDensity});
+    info.termNames.push_back("dummy_walls_adami2012");
+  }
+  if (s.walls == WallTreatment::kDynamic) info.termNames.push_back("dynamic_walls_crespo2007");
+  passes.push_back(forces);
+  if (s.walls == WallTreatment::kRepulsive) {
+    passes.push_back(RepulsiveWallsPass<D>{RepulsiveForce{c0 * c0, s.spacing, h}});
+    info.termNames.push_back("repulsive_walls_liu2012");
+  }
+  return Model<D>(info, std::move(passes));
 }
 
 }  // namespace sph

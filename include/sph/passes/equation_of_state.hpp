@@ -15,11 +15,12 @@ namespace sph {
 template <int D>
 struct EquationOfStatePass {
   EquationOfState eos;
-  bool walls = false;  // include the wall particles
+  bool walls = false;          // include the wall particles
+  bool clampNegative = false;  // negative_pressure = clamp
 
   unsigned run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const {
     const std::size_t n = walls ? P.size() : P.fluidCount();
-    std::visit([&](const auto& e) { computePressure(P, e, n); }, eos);
+    std::visit([&](const auto& e) { computePressure(P, e, n, clampNegative); }, eos);
     return term_bits::kEquationOfState;
   }
 };

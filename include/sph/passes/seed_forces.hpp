@@ -23,24 +23,24 @@ template <int D, unsigned Writes>
 struct ForceEpilogue {
   const BodyForces<D>& bodies;
   Real xsphEpsilon = 0;
+  bool densityRate = false;  // continuity density: write d rho/dt
 
   void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const {
     Vec<D> a = r.a;
     if constexpr ((Writes & rates::kForceDensity) != 0) a += r.F / P.rho[i];
     bodies.add(i, P, a);
     P.a[i] = a;
-    if constexpr ((Writes & rates::kDensityRate) != 0) P.drho[i] = r.drho;
+    if constexpr ((Writes & rates::kDensityRate) != 0)
+      if (densityRate) P.drho[i] = r.drho;
     if constexpr ((Writes & rates::kXsph) != 0)
       if (xsphEpsilon > 0) P.vXsph[i] = xsphEpsilon * r.xsph;
   }
 };
 
-// Wall particles' own rates: their density rate, when they have one.
-template <int D, unsigned Writes>
+// Wall particles' own rates: their density rate (dynamic walls).
+template <int D>
 struct WallEpilogue {
-  void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const {
-    if constexpr ((Writes & rates::kDensityRate) != 0) P.drho[i] = r.drho;
-  }
+  void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const { P.drho[i] = r.drho; }
 };
 
 template <int D>
@@ -54,7 +54,7 @@ struct SeedForcePass {
       using Pack = std::decay_t<decltype(pack)>;
       constexpr unsigned writes = PackTraits<Pack>::writes;
       return runPairLoop(P, neighbours, NoPairKernel{}, pressure.kernels.support(), pack, pack, std::tuple<>(),
-                         ForceEpilogue<D, writes>{bodies}, WallEpilogue<D, 0>{});
+                         ForceEpilogue<D, writes>{bodies}, WallEpilogue<D>{});
     };
     const unsigned bits = viscosity ? loop(std::make_tuple(pressure, *viscosity)) : loop(std::make_tuple(pressure));
     return bits | bodies.bits();

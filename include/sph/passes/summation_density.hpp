@@ -38,9 +38,12 @@ template <int D>
 struct SummationDensityPass {
   DensityKernelChoice<D> kernel;
   EquationOfState eos;
+  bool wallsInSums = true;     // repulsive walls do not count
+  bool clampNegative = false;  // negative_pressure = clamp
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    std::visit([&](const auto& W, const auto& e) { computeSummationDensity(P, neighbours, W, e); }, kernel, eos);
+    std::visit([&](const auto& W, const auto& e) { computeSummationDensity(P, neighbours, W, e, wallsInSums, clampNegative); },
+               kernel, eos);
     return term_bits::kSummationDensity | term_bits::kEquationOfState;
   }
 };

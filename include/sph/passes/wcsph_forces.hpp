@@ -1,9 +1,17 @@
 // Pass: the wcsph model's pair terms fused in one pair loop:
-//   a_i = symmetric pressure + viscosity (none | laplacian | monaghan)
-//         + body forces (epilogue),   XSPH correction (when eps > 0).
+//   d rho_i/dt = continuity + density diffusion        (density = continuity)
+//   a_i        = symmetric pressure + viscosity (none | laplacian | monaghan)
+//                + body forces (epilogue),   XSPH correction (when eps > 0).
+// Fluid neighbours and wall neighbours (dummy or dynamic wall particles,
+// with their p, rho and the velocity they show the fluid) go through the
+// same terms, less the diffusion and XSPH; dynamic wall particles get their
+// own density rate from their fluid neighbours in the same parallel region.
 // The kernel and the viscosity are resolved once per evaluation with
 // std::visit into one fully inlined loop; the pair loop forms grad W once
-// per pair for all the terms.
+// per pair for all the terms. The terms that are on or off by a coefficient
+// (continuity, diffusion, XSPH) are switched at run time: off, each is one
+// predictable branch per pair, and the loop is compiled 4 kernels x 3
+// viscosities times, not 2^3 times more.
 #pragma once
 
 #include "sph/kernels/kernels.hpp"
@@ -11,6 +19,8 @@
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/body_forces.hpp"
+#include "sph/terms/continuity_density.hpp"
+#include "sph/terms/density_diffusion.hpp"
 #include "sph/terms/laplacian_viscosity.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
 #include "sph/terms/symmetric_pressure.hpp"
@@ -21,9 +31,6 @@
 
 namespace sph {
 
-template <int D>
-using Kernel = std::variant<CubicSpline<D>, WendlandC2<D>, Gaussian<D>, Muller<D>>;
-
 struct NoViscosity {};
 struct LaplacianViscosityChoice {
   Real mu;
@@ -33,16 +40,17 @@ struct MonaghanViscosityChoice {
 };
 using ViscosityChoice = std::variant<NoViscosity, LaplacianViscosityChoice, MonaghanViscosityChoice>;
 
-// The pair evaluator of a viscosity choice for kernel K (none: an empty pack).
-template <class K>
-inline std::tuple<> viscosityPack(const K&, NoViscosity) { return {}; }
-template <class K>
-inline std::tuple<LaplacianViscosity<K>> viscosityPack(const K& k, LaplacianViscosityChoice v) {
-  return {LaplacianViscosity<K>{k, v.mu}};
+// The pair evaluator of a viscosity choice for kernel K (none: an empty
+// pack); kWall: for wall neighbours (their vWall), `on` = false: coefficient 0.
+template <class K, bool kWall>
+inline std::tuple<> viscosityPack(const K&, NoViscosity, bool = true) { return {}; }
+template <class K, bool kWall>
+inline std::tuple<LaplacianViscosity<K, kWall>> viscosityPack(const K& k, LaplacianViscosityChoice v, bool on = true) {
+  return {LaplacianViscosity<K, kWall>{k, on ? v.mu : 0}};
 }
-template <class K>
-inline std::tuple<MonaghanViscosity<K>> viscosityPack(const K& k, MonaghanViscosityChoice v) {
-  return {MonaghanViscosity<K>{k, v.alpha, v.beta}};
+template <class K, bool kWall>
+inline std::tuple<MonaghanViscosity<K, kWall>> viscosityPack(const K& k, MonaghanViscosityChoice v, bool on = true) {
+  return {MonaghanViscosity<K, kWall>{k, on ? v.alpha : 0, on ? v.beta : 0}};
 }
 
 template <int D>
@@ -51,16 +59,27 @@ struct WcsphForcePass {
   ViscosityChoice viscosity;
   BodyForces<D> bodies;
   Real xsphEpsilon = 0;
+  bool continuity = false;            // density = continuity: write d rho/dt
+  DensityDiffusion<D> diffusion;      // coefficient 0: off
+  bool wallPairs = true;              // walls enter the SPH sums (not for repulsive walls)
+  bool wallDensityRates = false;      // dynamic walls: d rho/dt of the wall particles
+  bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
     const unsigned bits = std::visit(
         [&](const auto& k, const auto& visc) {
           using K = std::decay_t<decltype(k)>;
-          const auto wallPairs = std::tuple_cat(std::make_tuple(SymmetricPressure{}), viscosityPack(k, visc));
-          const auto fluidPairs = std::tuple_cat(wallPairs, std::make_tuple(Xsph<K>{k, xsphEpsilon}));
+          const ContinuityDensity rate{continuity};
+          const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, SymmetricPressure{}),
+                                                 viscosityPack<K, false>(k, visc),
+                                                 std::make_tuple(Xsph<K>{k, xsphEpsilon}));
+          const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, SymmetricPressure{}),
+                                                         viscosityPack<K, true>(k, visc, wallViscosity));
           constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
-          return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallPairs, std::tuple<>(),
-                             ForceEpilogue<D, writes>{bodies, xsphEpsilon}, WallEpilogue<D, 0>{});
+          return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
+                             std::make_tuple(ContinuityDensity{wallDensityRates}),
+                             ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity}, WallEpilogue<D>{},
+                             PairLoopParts{wallPairs, wallDensityRates});
         },
         kernel, viscosity);
     return bits | bodies.bits();

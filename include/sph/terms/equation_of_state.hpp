@@ -10,7 +10,10 @@
 //                    (the toy star; Monaghan & Price 2004)
 //
 // Each is a small value type; a scene picks one by name and the choice is
-// resolved once per step (std::visit), never per particle.
+// resolved once per step (std::visit), never per particle. density(p) is
+// the inverse, for wall pressures (Adami 2012) and the hydrostatic start.
+// Tait with a whole-number gamma (7, the usual value) raises to its power
+// by multiplication, not pow().
 #pragma once
 
 #include "sph/particles.hpp"
@@ -21,42 +24,69 @@
 
 namespace sph {
 
+// x^e for a whole number e >= 0, by squaring.
+inline Real wholePower(Real x, unsigned e) {
+  Real r = 1;
+  for (; e; e >>= 1, x *= x)
+    if (e & 1u) r *= x;
+  return r;
+}
+
 struct LinearEos {
   Real k, rho0;
   Real pressure(Real rho) const { return k * (rho - rho0); }
   Real soundSpeed(Real) const { return std::sqrt(k); }
+  Real density(Real p) const { return rho0 + p / k; }
 };
 
 struct ClampedLinearEos {
   Real k, rho0;
   Real pressure(Real rho) const { return std::max(Real(0), k * (rho - rho0)); }
   Real soundSpeed(Real) const { return std::sqrt(k); }
+  Real density(Real p) const { return rho0 + p / k; }
 };
 
 struct TaitEos {
+  TaitEos(Real rho0_, Real c0_, Real gamma_)
+      : rho0(rho0_), c0(c0_), gamma(gamma_), B(rho0_ * c0_ * c0_ / gamma_),
+        whole(gamma_ == std::round(gamma_) && gamma_ <= 32), g(static_cast<unsigned>(std::lround(gamma_))) {}
   Real rho0, c0, gamma;
+  Real B;       // rho0 c0^2 / gamma
+  bool whole;   // gamma is a whole number: powers by multiplication
+  unsigned g;
+
   Real pressure(Real rho) const {
-    return rho0 * c0 * c0 / gamma * (std::pow(rho / rho0, gamma) - 1);
+    const Real x = rho / rho0;
+    return B * ((whole ? wholePower(x, g) : std::pow(x, gamma)) - 1);
   }
-  Real soundSpeed(Real rho) const { return c0 * std::pow(rho / rho0, (gamma - 1) / 2); }
+  // c = c0 (rho/rho0)^((gamma - 1)/2); an odd gamma gives a whole power.
+  Real soundSpeed(Real rho) const {
+    const Real x = rho / rho0;
+    if (whole && g % 2 == 1) return c0 * wholePower(x, (g - 1) / 2);
+    return c0 * std::pow(x, (gamma - 1) / 2);
+  }
+  // rho = rho0 (1 + p / B)^(1/gamma), for p > -B.
+  Real density(Real p) const { return rho0 * std::pow(std::max(1 + p / B, Real(1e-12)), 1 / gamma); }
 };
 
 struct PolytropicEos {
   Real k, n;
   Real pressure(Real rho) const { return k * std::pow(rho, 1 + 1 / n); }
   Real soundSpeed(Real rho) const { return std::sqrt(k * (1 + 1 / n) * std::pow(rho, 1 / n)); }
+  Real density(Real p) const { return std::pow(std::max(p, Real(0)) / k, n / (n + 1)); }
 };
 
 using EquationOfState = std::variant<LinearEos, ClampedLinearEos, TaitEos, PolytropicEos>;
 
 // p_i = p(rho_i), and c_i = c(rho_i) when the particles carry a sound
-// speed, for particles [0, n).
+// speed, for particles [0, n); with `clampNegative` p_i = max(p_i, 0).
 template <int D, class Eos>
-void computePressure(Particles<D>& P, const Eos& eos, std::size_t n) {
+void computePressure(Particles<D>& P, const Eos& eos, std::size_t n, bool clampNegative = false) {
   const bool withSoundSpeed = !P.c.empty();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
   for (std::size_t i = 0; i < n; ++i) {
-    P.p[i] = eos.pressure(P.rho[i]);
+    const Real p = eos.pressure(P.rho[i]);
+    P.p[i] = clampNegative ? std::max(p, Real(0)) : p;
     if (withSoundSpeed) P.c[i] = eos.soundSpeed(P.rho[i]);
   }
 }

@@ -32,7 +32,9 @@ Real viscosityLaplacian(const Muller<D>& k, const Pair<D>& c) {
   return k.laplacianW(c.r);
 }
 
-template <class Kernel>
+// kWall: j is a wall particle, seen with the velocity it shows the fluid
+// (vWall: no-slip or free-slip, boundaries/).
+template <class Kernel, bool kWall = false>
 struct LaplacianViscosity {
   static constexpr unsigned bit = term_bits::kLaplacianViscosity;
   static constexpr unsigned writes = rates::kAcceleration;
@@ -41,7 +43,8 @@ struct LaplacianViscosity {
 
   template <int D>
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
-    r.a += (mu * P.m[c.j] / (P.rho[c.i] * P.rho[c.j]) * viscosityLaplacian(kernel, c)) * (P.v[c.j] - P.v[c.i]);
+    const Vec<D>& vj = kWall ? P.vWall[c.j] : P.v[c.j];
+    r.a += (mu * P.m[c.j] / (P.rho[c.i] * P.rho[c.j]) * viscosityLaplacian(kernel, c)) * (vj - P.v[c.i]);
   }
 };
 

@@ -16,7 +16,8 @@
 
 namespace sph {
 
-template <class Kernel>
+// kWall: j is a wall particle, seen with the velocity it shows the fluid.
+template <class Kernel, bool kWall = false>
 struct MonaghanViscosity {
   static constexpr unsigned bit = term_bits::kMonaghanViscosity;
   static constexpr unsigned writes = rates::kAcceleration;
@@ -26,7 +27,8 @@ struct MonaghanViscosity {
 
   template <int D>
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
-    const Real vr = (P.v[c.i] - P.v[c.j]).dot(c.rij);
+    const Vec<D>& vj = kWall ? P.vWall[c.j] : P.v[c.j];
+    const Real vr = (P.v[c.i] - vj).dot(c.rij);
     if (vr >= 0) return;
     const Real h = kernel.h();
     const Real mu = h * vr / (c.r * c.r + eps * h * h);

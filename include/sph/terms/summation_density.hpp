@@ -12,18 +12,23 @@
 
 namespace sph {
 
+// wallsInSums = false leaves the wall neighbours out (repulsive walls);
+// clampNegative sets p_i = max(p_i, 0).
 template <int D, class Kernel, class Eos>
 void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& W,
-                             const Eos& eos) {
+                             const Eos& eos, bool wallsInSums = true, bool clampNegative = false) {
   const std::size_t n = P.fluidCount();
   const bool withSoundSpeed = !P.c.empty();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec<D> xi = P.x[i];
     Real rho_i = P.m[i] * W.densityAtZero();
-    neighbours.forEach(i, [&](std::uint32_t j) { rho_i += P.m[j] * W.density((xi - P.x[j]).squaredNorm()); });
+    auto add = [&](std::uint32_t j) { rho_i += P.m[j] * W.density((xi - P.x[j]).squaredNorm()); };
+    if (wallsInSums) neighbours.forEach(i, add);
+    else neighbours.forEachByKind(i, add, [](std::uint32_t) {});
     P.rho[i] = rho_i;
-    P.p[i] = eos.pressure(rho_i);
+    const Real p = eos.pressure(rho_i);
+    P.p[i] = clampNegative ? std::max(p, Real(0)) : p;
     if (withSoundSpeed) P.c[i] = eos.soundSpeed(rho_i);
   }
 }

@@ -18,6 +18,11 @@ enum : unsigned {
   kStarAttraction = 1u << 8,
   kDamping = 1u << 9,
   kXsph = 1u << 10,
+  kContinuityDensity = 1u << 11,
+  kDensityDiffusion = 1u << 12,
+  kAdamiWalls = 1u << 13,
+  kDynamicWalls = 1u << 14,
+  kRepulsiveWalls = 1u << 15,
 };
 
 }  // namespace sph::term_bits

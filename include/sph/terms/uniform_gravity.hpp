@@ -13,7 +13,10 @@ struct UniformGravity {
   static constexpr unsigned bit = term_bits::kGravity;
   Real g;
 
-  Vec<D> acceleration(std::size_t, const Particles<D>&) const {
+  Vec<D> acceleration(std::size_t, const Particles<D>&) const { return vector(); }
+
+  // The gravity vector, -g e_up.
+  Vec<D> vector() const {
     Vec<D> a = Vec<D>::Zero();
     a[verticalAxis<D>] = -g;
     return a;

@@ -1,0 +1,58 @@
+// Dummy wall particles: the generalised wall boundary condition of Adami,
+// Hu & Adams 2012 (J. Comput. Phys. 231, 7057-7075, eqs. 22, 27, 28).
+//
+// Before the forces, every wall particle w takes from its fluid neighbours f
+//   p_w     = (sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf) / sum_f W_wf
+//   rho_w   = EOS^-1(p_w)                       (the wall's density)
+//   v~_w    = sum_f v_f W_wf / sum_f W_wf       (the fluid's velocity there)
+//   vWall_w = 2 u_w - v~_w   (no-slip)   or   v~_w   (free-slip)
+// with r_wf = x_w - x_f, g the body acceleration and u_w, a_w the wall's own
+// velocity and acceleration (0 for a fixed wall). The walls then enter the
+// fluid's pressure term with p_w, rho_w and its viscous term with vWall_w
+// (the continuity term uses the wall's own velocity u_w). A wall particle
+// with no fluid neighbour gets p = 0, rho = rho0, vWall = u_w.
+#pragma once
+
+#include "sph/neighbour_list.hpp"
+#include "sph/passes/step_context.hpp"
+#include "sph/terms/equation_of_state.hpp"
+#include "sph/terms/term_bits.hpp"
+
+#include <variant>
+
+namespace sph {
+
+template <int D, class Kernel, class Eos>
+void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, const Eos& eos,
+                        const Vec<D>& bodyAcceleration, bool noSlip, Real rho0) {
+  const std::size_t n = P.size(), nFluid = P.fluidCount();
+  const bool withSoundSpeed = !P.c.empty();
+#pragma omp parallel for schedule(static) if (n - nFluid >= kMinParallelSize)
+  for (std::size_t w = nFluid; w < n; ++w) {
+    Real sumW = 0, sumPW = 0;
+    Vec<D> sumRhoRW = Vec<D>::Zero(), sumVW = Vec<D>::Zero();
+    const Vec<D> xw = P.x[w];
+    neighbours.forEach(w, [&](std::uint32_t f) {
+      const Vec<D> rwf = xw - P.x[f];
+      const Real W = kernel.W(rwf.norm());
+      sumW += W;
+      sumPW += P.p[f] * W;
+      sumRhoRW += (P.rho[f] * W) * rwf;
+      sumVW += W * P.v[f];
+    });
+    const Vec<D> uw = P.v[w];
+    if (sumW > 0) {
+      P.p[w] = (sumPW + bodyAcceleration.dot(sumRhoRW)) / sumW;
+      P.rho[w] = eos.density(P.p[w]);
+      const Vec<D> vFluid = sumVW / sumW;
+      P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;
+    } else {
+      P.p[w] = 0;
+      P.rho[w] = rho0;
+      P.vWall[w] = uw;
+    }
+    if (withSoundSpeed) P.c[w] = eos.soundSpeed(P.rho[w]);
+  }
+}
+
+}  // namespace sph

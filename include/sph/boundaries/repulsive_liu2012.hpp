@@ -1,0 +1,67 @@
+// Repulsive wall particles: the soft repulsive force of seed document 004
+// (after Liu et al. 2012; Chalk et al. 2020), for one layer of wall particles
+// on the wall at spacing dx/2. On a fluid particle i, from its wall
+// neighbours j:
+//
+//   a_i += sum_j 0.01 c^2 chi(r) f(gamma) r_ij / r^2,     r = |r_ij|, r_ij = x_i - x_j
+//   chi = 1 - r / (1.5 dx)  for r < 1.5 dx, else 0
+//   gamma = r / (0.75 h)
+//   f = 2/3 (0 < gamma <= 2/3),  2 gamma - 1.5 gamma^2 (2/3 < gamma <= 1),
+//       0.5 (2 - gamma)^2 (1 < gamma < 2),  0 (gamma >= 2)
+//
+// with c the reference sound speed and dx the fluid spacing (h_ij = h: one
+// smoothing length for all particles). The force is an acceleration and
+// pushes straight away from each wall particle. Repulsive wall particles take
+// no part in the SPH sums (density, pressure, viscosity): near a wall the
+// fluid sees a free surface, held only by this force.
+#pragma once
+
+#include "sph/neighbour_list.hpp"
+#include "sph/passes/step_context.hpp"
+#include "sph/terms/term_bits.hpp"
+
+namespace sph {
+
+struct RepulsiveForce {
+  Real c2;       // c^2
+  Real dx, h;
+
+  Real f(Real gamma) const {
+    if (gamma <= 0 || gamma >= 2) return 0;
+    if (gamma <= 2.0 / 3) return 2.0 / 3;
+    if (gamma <= 1) return 2 * gamma - 1.5 * gamma * gamma;
+    return 0.5 * (2 - gamma) * (2 - gamma);
+  }
+
+  // The acceleration factor s with a_i += s r_ij.
+  Real factor(Real r) const {
+    const Real range = 1.5 * dx;
+    if (r >= range || r <= 0) return 0;
+    const Real chi = 1 - r / range;
+    return 0.01 * c2 * chi * f(r / (0.75 * h)) / (r * r);
+  }
+};
+
+template <int D>
+struct RepulsiveWallsPass {
+  RepulsiveForce force;
+
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+    const std::size_t nFluid = P.fluidCount();
+#pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
+    for (std::size_t i = 0; i < nFluid; ++i) {
+      Vec<D> a = Vec<D>::Zero();
+      const Vec<D> xi = P.x[i];
+      neighbours.forEachByKind(
+          i, [](std::uint32_t) {},
+          [&](std::uint32_t j) {
+            const Vec<D> rij = xi - P.x[j];
+            a += force.factor(rij.norm()) * rij;
+          });
+      P.a[i] += a;
+    }
+    return term_bits::kRepulsiveWalls;
+  }
+};
+
+}  // namespace sph

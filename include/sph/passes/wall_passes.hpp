@@ -1,0 +1,35 @@
+// Passes of the wall-particle boundaries (boundaries/ has each method's
+// equations and source):
+//   AdamiWallsPass       dummy walls: wall p, rho, vWall from the fluid,
+//                        before the forces (dummy_adami2012.hpp)
+//   RepulsiveWallsPass   repulsive walls: their force, after the forces
+//                        (repulsive_liu2012.hpp)
+// Dynamic walls (dynamic_crespo2007.hpp) need no pass of their own: the
+// equation of state runs over them and the force pass gives them a density
+// rate.
+#pragma once
+
+#include "sph/boundaries/dummy_adami2012.hpp"
+#include "sph/boundaries/repulsive_liu2012.hpp"
+#include "sph/kernels/kernels.hpp"
+
+#include <variant>
+
+namespace sph {
+
+template <int D>
+struct AdamiWallsPass {
+  Kernel<D> kernel;
+  EquationOfState eos;
+  Vec<D> bodyAcceleration;  // g (fixed walls: a_w = 0)
+  bool noSlip = true;
+  Real rho0 = 1000;
+
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+    std::visit([&](const auto& k, const auto& e) { extrapolateToWalls(P, neighbours, k, e, bodyAcceleration, noSlip, rho0); },
+               kernel, eos);
+    return term_bits::kAdamiWalls;
+  }
+};
+
+}  // namespace sph

@@ -1,0 +1,59 @@
+// The checks of the wall-particle and density keys (called by validateCase):
+// which combinations a model allows, and whether the wall layers cover the
+// kernel support.
+#include "sph/case_config.hpp"
+
+#include "sph/wall_particles.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace sph {
+
+void validateWallsAndDensity(const CaseConfig& c) {
+  const bool seed = c.model == "seed_wcsph";
+  const bool particleWalls = c.walls && c.boundary != "reflecting";
+  if (seed) {
+    if (c.boundary != "reflecting")
+      throw CaseError("boundary = \"" + c.boundary + "\": model seed_wcsph has the seed's reflecting walls only; "
+                      "use model = \"wcsph\"");
+    if (c.density != "summation" || c.hydrostaticStart || c.negativePressure != "none" || !c.obstacleMin.empty())
+      throw CaseError("density, hydrostatic_start, negative_pressure and obstacles need model = \"wcsph\"; "
+                      "model seed_wcsph is the seed scheme exactly");
+  }
+  if (c.boundary == "dynamic" && c.density != "continuity")
+    throw CaseError("boundary = \"dynamic\" needs density = \"continuity\" (dynamic wall particles carry a "
+                    "density by the continuity equation)");
+  if (c.delta > 0 && c.density != "continuity")
+    throw CaseError("delta = " + std::to_string(c.delta) + " needs density = \"continuity\" (density diffusion "
+                    "acts on the continuity equation)");
+  if ((particleWalls || !c.obstacleMin.empty()) && !(c.spacing > 0))
+    throw CaseError("boundary = \"" + c.boundary + "\" builds wall particles on the fluid lattice: give spacing (> 0)");
+  if (!c.obstacleMin.empty() && !particleWalls)
+    throw CaseError("obstacle_min/obstacle_max need wall particles: boundary = \"dummy\", \"dynamic\" or \"repulsive\"");
+  const std::size_t D = static_cast<std::size_t>(c.dimension);
+  if (c.obstacleMin.size() != c.obstacleMax.size() || c.obstacleMin.size() % D != 0)
+    throw CaseError("obstacle_min and obstacle_max need " + std::to_string(D) +
+                    " values per obstacle, the same number of obstacles each (they have " +
+                    std::to_string(c.obstacleMin.size()) + " and " + std::to_string(c.obstacleMax.size()) + " values)");
+  for (std::size_t k = 0; k < c.obstacleMin.size(); k += D)
+    for (std::size_t d = 0; d < D; ++d) {
+      const Real a = c.obstacleMin[k + d], b = c.obstacleMax[k + d];
+      if (!(b > a)) throw CaseError("obstacle " + std::to_string(k / D + 1) + ": obstacle_max must exceed obstacle_min in every dimension");
+      if (a < c.domainMin[d] || b > c.domainMax[d])
+        throw CaseError("obstacle " + std::to_string(k / D + 1) + " reaches outside the domain [domain_min, domain_max]");
+    }
+  if (c.hydrostaticStart && c.blockMax.empty())
+    throw CaseError("hydrostatic_start needs a fluid block (block_min/block_max): the top of the block is the "
+                    "free surface the hydrostatic pressure starts from");
+  if (particleWalls && c.boundary != "repulsive") {
+    const int needed = wallLayersNeeded(c);
+    if (c.wallLayers > 0 && c.wallLayers < needed && !c.wallLayersOverride)
+      throw CaseError("wall_layers = " + std::to_string(c.wallLayers) + " is too few: the kernel support (" +
+                      c.kernel + ", h = " + std::to_string(c.h) + ", spacing = " + std::to_string(c.spacing) +
+                      ") needs " + std::to_string(needed) +
+                      " layers (give wall_layers_override = true to run with fewer, and see the fluid leak)");
+  }
+}
+
+}  // namespace sph
