@@ -5,10 +5,10 @@
 # particles coincide, detected by sph's state check).
 #
 #   bench/stability_sweep.sh [SPH] [CASE] [END_TIME]
-# Defaults: build/sph, cases/dam_break.case, 2 s.
+# Defaults: build/sph, cases/dam_break_seed.case, 2 s.
 set -u
 sph=${1:-build/sph}
-case_file=${2:-cases/dam_break.case}
+case_file=${2:-cases/dam_break_seed.case}
 end_time=${3:-2}
 h=0.01
 out=$(mktemp -d)

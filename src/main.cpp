@@ -196,8 +196,8 @@ int runCommand(int argc, char** argv) {
     } catch (const std::exception& e) {
       return fail(std::string("resume: ") + e.what());
     }
-    const auto flags = commandLineKeys(argc, argv);
-    c.given.insert(flags.begin(), flags.end());
+    const auto cliKeys = commandLineKeys(argc, argv);
+    c.given.insert(cliKeys.begin(), cliKeys.end());
     c.given.erase("resume");
     c.output = resume;
     c.resume = resume;
@@ -205,6 +205,13 @@ int runCommand(int argc, char** argv) {
     c.given = givenKeys(run);
     if (run.count("--name") == 0) c.name = sph::defaultRunName(c.caseFile);
   }
+  // One output rule: a flag for one replaces the case file's other.
+  const auto flags = commandLineKeys(argc, argv);
+  if (flags.count("output_every") && !flags.count("output_interval")) {
+    c.outputInterval = 0;
+    c.given.erase("output_interval");
+  }
+  if (flags.count("output_interval") && !flags.count("output_every")) c.given.erase("output_every");
   if (c.output.empty()) c.output = (std::filesystem::path("runs") / c.name).string();
   if (c.dimension == 3) return sph::runCase<3>(c, std::cout, std::cerr);
   if (c.dimension == 2) return sph::runCase<2>(c, std::cout, std::cerr);

@@ -10,7 +10,7 @@ namespace {
 // scratch folder; require failure, a one-line message containing `expected`,
 // and nothing written.
 void expectRejected(const std::vector<std::string>& args, const std::string& expected,
-                    const std::string& caseName = "dam_break") {
+                    const std::string& caseName = "dam_break_seed") {
   const auto dir = test::scratchDir("bad");
   const auto out = dir / "out";
   std::vector<std::string> all{"run"};

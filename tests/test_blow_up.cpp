@@ -12,7 +12,7 @@ BOOST_AUTO_TEST_SUITE(blow_up)
 
 BOOST_AUTO_TEST_CASE(nan_stops_the_run_and_leaves_a_readable_series) {
   const auto dir = test::scratchDir("blowup");
-  const auto r = test::runSph({"run", test::caseFile("dam_break"), "--output", dir.string(),
+  const auto r = test::runSph({"run", test::caseFile("dam_break_seed"), "--output", dir.string(),
                                "--spacing", "0.005", "--output_every", "100", "--end_time", "0.5"});
   BOOST_TEST(r.exitCode == 3, r.output);
   BOOST_TEST(r.output.find("the run blew up at step ") != std::string::npos, r.output);
@@ -21,7 +21,7 @@ BOOST_AUTO_TEST_CASE(nan_stops_the_run_and_leaves_a_readable_series) {
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     BOOST_TEST(entry.path().extension() != ".tmp", "left behind " << entry.path());
 
-  const auto series = test::readPvd(dir / "dam_break.pvd");
+  const auto series = test::readPvd(dir / "dam_break_seed.pvd");
   BOOST_TEST(series.size() >= 2u);
   for (const auto& e : series) BOOST_TEST(e.data->GetNumberOfPoints() == 5000);
 }

@@ -29,6 +29,11 @@ struct StateCheck {
 
   Vec<D> lo, hi;
   bool wallParticles = false;  // the box's walls are particles: a fluid particle outside it went through one
+  // How far a fluid particle may pass a face of the box (or enter an
+  // obstacle) before it counts as leaked: with wall particles dx/2, the
+  // distance to the first layer of wall particles, since a particle near
+  // a wall may stray a little past the wall line and be pushed back.
+  Real tolerance = 0;
   struct Box {
     Vec<D> lo, hi;
   };
@@ -38,7 +43,7 @@ struct StateCheck {
     const Vec<D>& x = P.x[i];
     const bool finite = x.allFinite() && P.v[i].allFinite() && P.a[i].allFinite() && std::isfinite(P.rho[i]);
     if (i >= P.fluidCount()) return finite;  // wall particles live outside the box
-    return finite && inside(x, lo, hi) && !inObstacle(x);
+    return finite && inside(x, lo.array() - tolerance, hi.array() + tolerance) && !inObstacle(x);
   }
 
   StateFailure describe(const Particles<D>& P, std::size_t i) const {
@@ -57,7 +62,7 @@ struct StateCheck {
     } else if (!std::isfinite(P.rho[i])) {
       f.quantity = "density";
       f.detail = "density " + std::to_string(P.rho[i]) + " is not finite";
-    } else if (inObstacle(P.x[i])) {
+    } else if (i < P.fluidCount() && inObstacle(P.x[i])) {
       f.quantity = "wall";
       f.detail = "fluid particle at " + vecString(P.x[i]) + " is inside an obstacle: it leaked through its wall "
                  "particles (too few wall layers, or too large a dt)";
@@ -74,12 +79,13 @@ struct StateCheck {
   }
 
  private:
-  static bool inside(const Vec<D>& x, const Vec<D>& a, const Vec<D>& b) {
-    return (x.array() >= a.array()).all() && (x.array() <= b.array()).all();
+  template <class A, class B>
+  static bool inside(const Vec<D>& x, const A& a, const B& b) {
+    return (x.array() >= a).all() && (x.array() <= b).all();
   }
   bool inObstacle(const Vec<D>& x) const {
     for (const Box& b : obstacles)
-      if ((x.array() > b.lo.array()).all() && (x.array() < b.hi.array()).all()) return true;
+      if ((x.array() > b.lo.array() + tolerance).all() && (x.array() < b.hi.array() - tolerance).all()) return true;
     return false;
   }
 

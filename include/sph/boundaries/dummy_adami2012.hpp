@@ -11,6 +11,10 @@
 // fluid's pressure term with p_w, rho_w and its viscous term with vWall_w
 // (the continuity term uses the wall's own velocity u_w). A wall particle
 // with no fluid neighbour gets p = 0, rho = rho0, vWall = u_w.
+// A wall never pulls: p_w = max(p_w, 0). Tension extrapolated from a free
+// surface next to a wall would otherwise glue fluid particles to it (and
+// draw them into it); DualSPHysics keeps its boundary densities >= rho0
+// for the same reason.
 #pragma once
 
 #include "sph/neighbour_list.hpp"
@@ -18,6 +22,7 @@
 #include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/term_bits.hpp"
 
+#include <algorithm>
 #include <variant>
 
 namespace sph {
@@ -42,7 +47,7 @@ void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, con
     });
     const Vec<D> uw = P.v[w];
     if (sumW > 0) {
-      P.p[w] = (sumPW + bodyAcceleration.dot(sumRhoRW)) / sumW;
+      P.p[w] = std::max(Real(0), (sumPW + bodyAcceleration.dot(sumRhoRW)) / sumW);
       P.rho[w] = eos.density(P.p[w]);
       const Vec<D> vFluid = sumVW / sumW;
       P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;

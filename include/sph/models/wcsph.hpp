@@ -86,12 +86,12 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   }
   forces.wallPairs = s.walls != WallTreatment::kRepulsive;
   forces.wallDensityRates = s.walls == WallTreatment::kDynamic;
-  forces.wallViscosity = s.noSlip || s.walls == WallTreatment::kDummy;
+  forces.wallViscosity = s.noSlip;
   if (s.walls == WallTreatment::kDummy || s.walls == WallTreatment::kDynamic) info.needs |= fieldBit(kFieldVWall);
 
   std::vector<Pass<D>> passes;
   if (continuity) {
-    passes.push_back(EquationOfStatePass<D>{s.eos, s.walls == WallTreatment::kDynamic, s.clampNegative});
+    passes.push_back(EquationOfStatePass<D>{s.eos, s.walls == WallTreatment::kDynamic, s.clampNegative, s.restDensity});
   } else {
     const auto density = std::visit(
         [](const auto& k) { return DensityKernelChoice<D>(DensityKernel<std::decay_t<decltype(k)>>{k}); }, s.kernel);

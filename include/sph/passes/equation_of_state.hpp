@@ -2,13 +2,17 @@
 // particles carry a sound speed) over particles [begin, end): the fluid, or
 // every particle when walls carry a density of their own (dynamic walls).
 // Used when density is a state variable (continuity density); summation
-// density applies the EOS itself.
+// density applies the EOS itself. Dynamic wall particles never pull: their
+// density is kept >= rho0 first (as DualSPHysics does), so their pressure
+// is >= 0 and a free surface next to a wall does not stick to it.
 #pragma once
 
 #include "sph/neighbour_list.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/term_bits.hpp"
+
+#include <algorithm>
 
 namespace sph {
 
@@ -18,8 +22,12 @@ struct EquationOfStatePass {
   bool walls = false;          // include the wall particles
   bool clampNegative = false;  // negative_pressure = clamp
 
+  Real rho0 = 0;               // walls: the least density they may have
+
   unsigned run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const {
     const std::size_t n = walls ? P.size() : P.fluidCount();
+    if (walls)
+      for (std::size_t i = P.fluidCount(); i < n; ++i) P.rho[i] = std::max(P.rho[i], rho0);
     std::visit([&](const auto& e) { computePressure(P, e, n, clampNegative); }, eos);
     return term_bits::kEquationOfState;
   }

@@ -16,7 +16,11 @@
 
 namespace sph {
 
-// kWall: j is a wall particle, seen with the velocity it shows the fluid.
+// With wall neighbours it sees their own (prescribed) velocity, as with
+// dynamic boundary particles in DualSPHysics: the no-slip extrapolation of
+// dummy walls is for physical viscosity, and doubled relative velocities in
+// this artificial term glue free-surface particles to a vertical wall.
+// (kWall is accepted for a uniform pack shape and changes nothing.)
 template <class Kernel, bool kWall = false>
 struct MonaghanViscosity {
   static constexpr unsigned bit = term_bits::kMonaghanViscosity;
@@ -27,8 +31,7 @@ struct MonaghanViscosity {
 
   template <int D>
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
-    const Vec<D>& vj = kWall ? P.vWall[c.j] : P.v[c.j];
-    const Real vr = (P.v[c.i] - vj).dot(c.rij);
+    const Real vr = (P.v[c.i] - P.v[c.j]).dot(c.rij);
     if (vr >= 0) return;
     const Real h = kernel.h();
     const Real mu = h * vr / (c.r * c.r + eps * h * h);
