@@ -114,4 +114,47 @@ BOOST_AUTO_TEST_CASE(viscosity_with_zero_coefficient_is_not_constructed) {
   BOOST_TEST((executed(seedScene) & kSeedPressure) != 0u);
 }
 
+// No walls: no wall fields (kind, vWall), no wall pass, no density rate
+// with summation density. Dummy walls bring their fields and their pass;
+// continuity density its rate; dynamic walls no extrapolation pass.
+BOOST_AUTO_TEST_CASE(walls_and_continuity_cost_nothing_when_off) {
+  CaseConfig c = block(2);
+  Scene<2> none = test::sceneOf<2>(c);
+  BOOST_REQUIRE(!none.step());
+  const auto& P = none.particles();
+  BOOST_TEST(!P.hasWalls());
+  for (const auto* f : {&P.vWall}) BOOST_TEST(f->empty());
+  BOOST_TEST(P.kind.empty());
+  BOOST_TEST(P.drho.empty());
+  BOOST_TEST(P.rhoHalf.empty());
+  BOOST_TEST((executed(none) & (kAdamiWalls | kDynamicWalls | kRepulsiveWalls | kContinuityDensity |
+                                kDensityDiffusion)) == 0u);
+
+  CaseConfig w = block(2);
+  w.walls = true;
+  w.boundary = "dummy";
+  w.domainMin = {0.1, 0.1}, w.domainMax = {0.4, 0.4};
+  w.density = "continuity";
+  w.delta = 0.1;
+  w.eos = "tait", w.c0 = 10;
+  Scene<2> dummy = test::sceneOf<2>(w);
+  BOOST_REQUIRE(!dummy.step());
+  const auto& Q = dummy.particles();
+  BOOST_TEST(Q.hasWalls());
+  BOOST_TEST(Q.kind.size() == Q.size());
+  BOOST_TEST(Q.vWall.size() == Q.size());
+  BOOST_TEST(Q.drho.size() == Q.size());
+  BOOST_TEST(Q.rhoHalf.size() == Q.size());  // leap-frog's half-step density
+  const unsigned ran = executed(dummy);
+  for (unsigned bit : {kAdamiWalls, kContinuityDensity, kDensityDiffusion}) BOOST_TEST((ran & bit) != 0u);
+  BOOST_TEST((ran & (kSummationDensity | kRepulsiveWalls)) == 0u);
+
+  w.boundary = "dynamic";
+  Scene<2> dynamic = test::sceneOf<2>(w);
+  BOOST_REQUIRE(!dynamic.step());
+  BOOST_TEST((executed(dynamic) & kAdamiWalls) == 0u);
+  BOOST_TEST((executed(dynamic) & kContinuityDensity) != 0u);
+  BOOST_TEST((executed(dynamic) & kDynamicWalls) != 0u);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

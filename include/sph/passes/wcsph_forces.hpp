@@ -82,7 +82,8 @@ struct WcsphForcePass {
                              PairLoopParts{wallPairs, wallDensityRates});
         },
         kernel, viscosity);
-    return bits | bodies.bits();
+    const unsigned walls = wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
+    return bits | walls | bodies.bits();
   }
 };
 

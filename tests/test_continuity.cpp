@@ -1,0 +1,169 @@
+// Continuity density and density diffusion, and the EOS pieces they use:
+// - d rho/dt of the continuity equation equals the time derivative of the
+//   summation density (an identity of the chain rule, edges included),
+//   checked by a central difference of the summation density;
+// - density diffusion leaves a uniform state unchanged (both forms) and a
+//   hydrostatic state unchanged (Fourtakas), while the Molteni form does not
+//   (the test can fail);
+// - momentum is conserved with continuity and diffusion;
+// - Tait with gamma = 7 by multiplication equals pow(); every EOS inverse
+//   inverts.
+#include "test_support.hpp"
+
+#include <random>
+
+using namespace sph;
+
+namespace {
+
+// A jittered lattice block, no walls, no gravity.
+CaseConfig block(const std::string& density) {
+  CaseConfig c = test::bareWcsph(2);
+  c.kernel = "wendland_c2";
+  c.spacing = 0.01;
+  c.h = 0.015;
+  c.eos = "linear";
+  c.k = 100;
+  c.density = density;
+  c.blockMin = {0, 0};
+  c.blockMax = {0.2, 0.2};
+  return c;
+}
+
+template <class F>
+void forEachParticle(Scene<2>& s, F f) {
+  auto& P = s.particles();
+  for (std::size_t i = 0; i < P.size(); ++i) f(P, i);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(continuity)
+
+// rho_i(t) = sum_j m_j W(x_i(t) - x_j(t)) with x(t) = x0 + t v: its
+// derivative at t = 0 is sum_j m_j (v_i - v_j) . grad_i W_ij exactly. A
+// central difference with step 1e-6 s agrees to O(eps^2) plus round-off:
+// 1e-6 of the largest rate.
+BOOST_AUTO_TEST_CASE(rate_equals_the_derivative_of_summation_density) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<Real> jitter(-0.002, 0.002);
+  auto velocity = [](const Vec<2>& x) { return Vec<2>(std::sin(20 * x[1]), 0.5 * x[0] * x[0] - x[1]); };
+  CaseConfig rate = block("continuity");
+  Scene<2> s = test::sceneOf<2>(rate);
+  forEachParticle(s, [&](Particles<2>& P, std::size_t i) {
+    P.x[i] += Vec<2>(jitter(rng), jitter(rng));
+    P.v[i] = velocity(P.x[i]);
+  });
+  // A scene of these positions and velocities; its initial evaluation gives
+  // d rho/dt; two scenes of the shifted positions give rho by summation.
+  auto rebuilt = [&](const std::string& density, Real t) {
+    CaseConfig c = block(density);
+    c.blockMin.clear(), c.blockMax.clear();
+    for (std::size_t i = 0; i < s.particles().size(); ++i) {
+      const Vec<2> x = s.particles().x[i] + t * s.particles().v[i];
+      c.points.insert(c.points.end(), {x[0], x[1]});
+    }
+    validateCase(c);
+    InitialState<2> init = buildInitialState<2>(withDefaults(c));
+    for (std::size_t i = 0; i < init.particles.size(); ++i) {
+      init.particles.v[i] = s.particles().v[i];
+      init.particles.m[i] = 1000 * 0.01 * 0.01;
+      init.particles.rho[i] = 1000;
+    }
+    Scene<2> out = makeScene<2>(withDefaults(c), std::move(init));
+    BOOST_REQUIRE(!out.initialise(false));
+    return out;
+  };
+  const Scene<2> now = rebuilt("continuity", 0);
+  const Real eps = 1e-6;
+  const Scene<2> ahead = rebuilt("summation", eps), behind = rebuilt("summation", -eps);
+  auto byId = [](const Scene<2>& sc, auto field) {
+    std::map<std::int64_t, Real> m;
+    for (std::size_t i = 0; i < sc.particles().size(); ++i) m[sc.particles().id[i]] = field(sc.particles(), i);
+    return m;
+  };
+  const auto drho = byId(now, [](const Particles<2>& P, std::size_t i) { return P.drho[i]; });
+  const auto rhoA = byId(ahead, [](const Particles<2>& P, std::size_t i) { return P.rho[i]; });
+  const auto rhoB = byId(behind, [](const Particles<2>& P, std::size_t i) { return P.rho[i]; });
+  Real scale = 0, worst = 0;
+  for (const auto& [id, r] : drho) scale = std::max(scale, std::abs(r));
+  BOOST_TEST_REQUIRE(scale > 1.0);  // the field does compress the particles
+  for (const auto& [id, r] : drho) worst = std::max(worst, std::abs((rhoA.at(id) - rhoB.at(id)) / (2 * eps) - r));
+  BOOST_TEST(worst < 1e-6 * scale, "worst " << worst << " of " << scale);
+}
+
+// At rest (v = 0) the continuity term is zero, so d rho/dt is the diffusion
+// alone. Uniform density: psi = 0 for both forms. Hydrostatic density for
+// the linear EOS, rho = rho0 (1 + g (H - y)/k): psi = 0 for fourtakas to
+// round-off (1e-9 of the Molteni value), while molteni diffuses.
+BOOST_AUTO_TEST_CASE(diffusion_keeps_uniform_and_hydrostatic_states) {
+  auto rates = [](const std::string& form, bool hydrostatic) {
+    CaseConfig c = block("continuity");
+    c.delta = 0.1;
+    c.diffusion = form;
+    c.g = hydrostatic ? 9.81 : 0;
+    Scene<2> s = test::sceneOf<2>(c);
+    for (std::size_t i = 0; i < s.particles().size(); ++i)
+      s.particles().rho[i] = hydrostatic ? 1000 * (1 + 9.81 * (0.2 - s.particles().x[i][1]) / 100) : 1000;
+    // Evaluate again on these densities (the particles do not move: dt = 0).
+    CaseConfig again = c;
+    InitialState<2> init;
+    init.particles = s.particles();
+    Scene<2> t = makeScene<2>(withDefaults(again), std::move(init));
+    BOOST_REQUIRE(!t.initialise(false));
+    Real worst = 0;
+    for (std::size_t i = 0; i < t.particles().size(); ++i) worst = std::max(worst, std::abs(t.particles().drho[i]));
+    return worst;
+  };
+  BOOST_TEST(rates("molteni", false) < 1e-9);
+  BOOST_TEST(rates("fourtakas", false) < 1e-9);
+  const Real molteni = rates("molteni", true), fourtakas = rates("fourtakas", true);
+  BOOST_TEST(molteni > 1e-3);
+  BOOST_TEST(fourtakas < 1e-9 * molteni + 1e-12);
+}
+
+// A jittered block with random velocities: continuity, diffusion and
+// Monaghan viscosity keep total momentum to round-off (pairwise
+// antisymmetric forces; the density terms move no momentum).
+BOOST_AUTO_TEST_CASE(momentum_is_conserved_with_continuity_and_diffusion) {
+  CaseConfig c = block("continuity");
+  c.delta = 0.1;
+  c.viscosity = "monaghan";
+  c.eos = "tait", c.c0 = 20, c.rho0 = 1000;
+  c.dt = 1e-4;
+  Scene<2> s = test::sceneOf<2>(c);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  for (auto& v : s.particles().v) v = Vec<2>(u(rng), u(rng));
+  auto momentum = [&] {
+    Vec<2> p = Vec<2>::Zero();
+    Real scale = 0;
+    for (std::size_t i = 0; i < s.particles().size(); ++i) {
+      p += s.particles().m[i] * s.particles().v[i];
+      scale += s.particles().m[i] * s.particles().v[i].norm();
+    }
+    return std::make_pair(p, scale);
+  };
+  const auto [p0, scale] = momentum();
+  for (int n = 0; n < 100; ++n) BOOST_REQUIRE(!s.step());
+  BOOST_TEST((momentum().first - p0).norm() < 1e-12 * scale);
+}
+
+BOOST_AUTO_TEST_CASE(tait_by_multiplication_equals_pow_and_every_eos_inverts) {
+  const TaitEos whole(1000, 20, 7), fractional(1000, 20, 7.5);
+  BOOST_TEST(whole.whole);
+  BOOST_TEST(!fractional.whole);
+  for (Real rho : {950.0, 999.0, 1000.0, 1003.0, 1050.0}) {
+    const Real B = 1000 * 20 * 20 / 7.0;
+    BOOST_TEST(whole.pressure(rho) == B * (std::pow(rho / 1000, 7) - 1), boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(whole.soundSpeed(rho) == 20 * std::pow(rho / 1000, 3), boost::test_tools::tolerance(1e-13));
+    BOOST_TEST(whole.density(whole.pressure(rho)) == rho, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(fractional.density(fractional.pressure(rho)) == rho, boost::test_tools::tolerance(1e-12));
+    const LinearEos lin{100, 1000};
+    BOOST_TEST(lin.density(lin.pressure(rho)) == rho, boost::test_tools::tolerance(1e-14));
+    const PolytropicEos poly{0.1, 1};
+    BOOST_TEST(poly.density(poly.pressure(rho)) == rho, boost::test_tools::tolerance(1e-12));
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()
