@@ -5,10 +5,13 @@
 // every particle, grid and neighbour-list array), for 1 and 2 threads, and
 // the machine's load average before and after.
 //
-//   sph-bench [--suite seed|kernels|3d|star|all] [--n 10000,100000]
+//   sph-bench [--suite seed|water|kernels|3d|star|all] [--n 10000,100000]
 //             [--hdx 1.35,2.5] [--steps 200] [--repeats 5] [--threads 1,2]
 //
 // Suites: seed    the seed scheme's dam break (2D) at the given N and h/dx;
+//         water   the wall-particle dam break (2D; dummy and dynamic walls,
+//                 continuity density, delta-SPH, Wendland at h/dx 1.3: ~20
+//                 neighbours) at the given N of fluid particles;
 //         kernels the wcsph dam break (2D, Tait, Laplacian viscosity) with
 //                 each kernel at its usual support (~20 neighbours);
 //         3d      the wcsph dam break in 3D (cubic spline);
@@ -89,6 +92,36 @@ CaseConfig damBreak(int dim, double n, double kernelHdx, const std::string& mode
     c.mu = 1e-3 * c.rho0 * c.h;               // small, keeps the run tidy
     c.dt = 0.2 * c.h / c.c0;
   }
+  return c;
+}
+
+// The wall-particle dam break (dam_break_mm.case's physics): column a wide,
+// 2a high against the left wall of a tank 4a x 2.5a, Wendland C2 at h/dx,
+// Tait, continuity density with delta-SPH, Monaghan viscosity, wall
+// particles of the given treatment.
+CaseConfig waterDamBreak(double n, double hdx, const std::string& boundary) {
+  CaseConfig c;
+  c.model = "wcsph";
+  c.dimension = 2;
+  const double a = 1.0, dx = a * std::sqrt(2.0 / n);
+  c.h = hdx * dx;
+  c.spacing = dx;
+  c.kernel = "wendland_c2";
+  c.eos = "tait";
+  c.c0 = 10 * 2 * std::sqrt(9.81 * 2 * a);  // 10 x the surge speed
+  c.density = "continuity";
+  c.delta = 0.1;
+  c.viscosity = "monaghan";
+  c.alpha = 0.02;
+  c.beta = 0;
+  c.boundary = boundary;
+  c.negativePressure = "clamp";
+  c.hydrostaticStart = true;
+  c.domainMin = {0, 0};
+  c.domainMax = {4 * a, 2.5 * a};
+  c.blockMin = {0, 0};
+  c.blockMax = {a, 2 * a};
+  c.dt = 0.15 * c.h / c.c0;
   return c;
 }
 
@@ -192,6 +225,13 @@ int main(int argc, char** argv) {
     for (const auto& [k, hdx] : kernels)
       s2.push_back({std::string("wcsph dam break ") + k, damBreak(2, ns.front(), hdx, "wcsph", k)});
   }
+  if (all || suite == "water")
+    for (double n : ns)
+      for (const char* boundary : {"dummy", "dynamic"}) {
+        char label[64];
+        std::snprintf(label, sizeof label, "water %s h/dx=1.3", boundary);
+        s2.push_back({label, waterDamBreak(n, 1.3, boundary)});
+      }
   if (all || suite == "3d") s3.push_back({"wcsph dam break cubic_spline", damBreak(3, 50000, 1.3, "wcsph", "cubic_spline")});
   if (all || suite == "star") {
     s2.push_back({"toy star", toyStar(2, 2000)});

@@ -1,0 +1,190 @@
+"""Observables of sph runs, read from their own output files, and the
+references they are compared with (tests/reference/*.csv, nobody here wrote
+them). Used by validate.py (ctest label `validation`) and by sph study.
+
+Needs Debian's python3 with VTK (/usr/bin/python3; python3-paraview brings
+vtkmodules) and numpy.
+"""
+import glob
+import json
+import os
+import xml.etree.ElementTree as ET
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REFERENCE = os.path.join(HERE, "..", "tests", "reference")
+
+
+class Snapshot:
+    """One .vtp of a run: positions, point arrays, time; fluid/wall split."""
+
+    def __init__(self, path):
+        r = vtkXMLPolyDataReader()
+        r.SetFileName(path)
+        r.Update()
+        o = r.GetOutput()
+        self.x = vtk_to_numpy(o.GetPoints().GetData())
+        pd = o.GetPointData()
+        self.arrays = {pd.GetArrayName(k): vtk_to_numpy(pd.GetArray(k)) for k in range(pd.GetNumberOfArrays())}
+        self.time = o.GetFieldData().GetArray("TimeValue").GetValue(0)
+        kind = self.arrays.get("kind")
+        self.fluid = np.ones(len(self.x), bool) if kind is None else kind == 0
+
+    def __getitem__(self, name):
+        return self.arrays[name]
+
+
+class Run:
+    """A run folder: its series (.pvd), run.json and the case it resolved."""
+
+    def __init__(self, folder):
+        self.folder = folder
+        pvds = glob.glob(os.path.join(folder, "*.pvd"))
+        if len(pvds) != 1:
+            raise SystemExit(f"{folder}: expected one .pvd, found {len(pvds)}")
+        root = ET.parse(pvds[0]).getroot()
+        self.entries = [(float(e.get("timestep")), os.path.join(folder, e.get("file"))) for e in root.iter("DataSet")]
+        with open(os.path.join(folder, "run.json")) as f:
+            self.record = json.load(f)
+        self.case = self.record["case"]
+
+    def snapshots(self):
+        for _, path in self.entries:
+            yield Snapshot(path)
+
+    def last(self):
+        return Snapshot(self.entries[-1][1])
+
+
+def reference_table(name):
+    """A reference CSV of tests/reference as an array (comment lines skipped)."""
+    rows = []
+    with open(os.path.join(REFERENCE, name)) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip() or not (line[0].isdigit() or line[0] in "-."):
+                continue
+            rows.append([float(v) for v in line.split(",")])
+    return np.array(rows)
+
+
+# ---- Hydrostatic column ----
+
+def compressible_hydrostatic(H, g, rho_of_p, n=20001):
+    """p(y) of a column at rest with its free surface at H: dp/dy = -g rho(p),
+    integrated down from p(H) = 0. Returns (y descending, p)."""
+    y = np.linspace(H, 0, n)
+    p = np.zeros(n)
+    for k in range(1, n):
+        p[k] = p[k - 1] + g * rho_of_p(p[k - 1]) * (y[k - 1] - y[k])
+    return y, p
+
+
+def hydrostatic_errors(run, depth0):
+    """Pressure of the last snapshot against the hydrostatic column, in units
+    of rho0 g H0: mean |error| over the fluid, the worst layer (mean of a row of
+    particles) and the worst particle deeper than one support below the free
+    surface; errors against rho0 g (H - y) and against the compressible
+    profile dp/dy = -g rho(p). Also the column drop against g H^2/(2 c0^2)."""
+    c = run.case
+    s = run.last()
+    rho0, g, dx = c["rho0"], c["g"], c["spacing"]
+    up = c["dimension"] - 1  # snapshots hold 3 coordinates, z = 0 in 2D
+    kernel_support = {"cubic_spline": 2, "wendland_c2": 2, "gaussian": 3, "muller": 1}[c["kernel"]] * c["h"]
+    y = s.x[s.fluid, up]
+    p = s["pressure"][s.fluid]
+    width = int(round((c["domain_max"][0] - c["domain_min"][0]) / dx))
+    columns = width ** (len(c["domain_min"]) - 1)
+    top = np.sort(y)[-columns:].mean()
+    H = top + dx / 2  # the free surface: half a spacing above the top layer
+    if c["eos"] == "tait":
+        B = rho0 * c["c0"] ** 2 / c["gamma"]
+        rho_of_p = lambda q: rho0 * (1 + q / B) ** (1 / c["gamma"])
+        c0 = c["c0"]
+    else:
+        rho_of_p = lambda q: rho0 + q / c["k"]
+        c0 = np.sqrt(c["k"])
+    ye, pe = compressible_hydrostatic(H, g, rho_of_p)
+    exact = np.interp(y, ye[::-1], pe[::-1])
+    scale = rho0 * g * depth0
+    err_linear = (p - rho0 * g * (H - y)) / scale
+    err_exact = (p - exact) / scale
+    deep = y < H - kernel_support
+    layers = np.round((y - y.min()) / dx).astype(int)
+    worst_layer = max(abs(err_exact[(layers == k) & deep].mean()) for k in np.unique(layers[deep]))
+    worst_layer_linear = max(abs(err_linear[(layers == k) & deep].mean()) for k in np.unique(layers[deep]))
+    drop = depth0 - H
+    drop_theory = g * depth0 ** 2 / (2 * c0 ** 2)
+    xf = s.x[s.fluid][:, : c["dimension"]]
+    outside = np.any(xf < np.array(c["domain_min"]) - dx / 2) or np.any(
+        xf[:, :up] > np.array(c["domain_max"][:up]) + dx / 2)
+    return {
+        "time": s.time,
+        "mean_error": float(np.abs(err_exact).mean()),
+        "worst_layer_error": float(worst_layer),
+        "worst_particle_error": float(np.abs(err_exact[deep]).max()),
+        "mean_error_linear": float(np.abs(err_linear).mean()),
+        "worst_layer_error_linear": float(worst_layer_linear),
+        "drop": float(drop),
+        "drop_theory": float(drop_theory),
+        "drop_ratio": float(drop / drop_theory),
+        "fluid_outside": bool(outside),
+        "rho_min": float(s["density"][s.fluid].min()),
+        "rho_max": float(s["density"][s.fluid].max()),
+        "v_max": float(np.abs(s["velocity"][s.fluid]).max()),
+    }
+
+
+# ---- Dam break (Martin & Moyce 1952, n^2 = 2) ----
+
+def dam_break_curves(run):
+    """Front Z = x_front / a against T = t sqrt(2 g / a), and the residual
+    height H = eta / (2 a) at the left wall against tau = t sqrt(g / a), from
+    every snapshot. a: the column's width (block_max - block_min along x);
+    x_front: the furthest fluid particle plus dx/2; eta: the highest fluid
+    particle within 1.5 dx of the left wall plus dx/2."""
+    c = run.case
+    a = c["block_max"][0] - c["block_min"][0]
+    x0 = c["domain_min"][0]
+    dx, g = c["spacing"], c["g"]
+    up = c["dimension"] - 1
+    T, Z, tau, H = [], [], [], []
+    for s in run.snapshots():
+        xf = s.x[s.fluid]
+        T.append(s.time * np.sqrt(2 * g / a))
+        Z.append((xf[:, 0].max() + dx / 2 - x0) / a)
+        near = xf[:, 0] < x0 + 1.5 * dx
+        tau.append(s.time * np.sqrt(g / a))
+        H.append((xf[near, up].max() + dx / 2) / (2 * a) if near.any() else 0.0)
+    return np.array(T), np.array(Z), np.array(tau), np.array(H)
+
+
+def dam_break_errors(run, T_range=(1.0, 3.0)):
+    """Front: relative error of Z against the Martin & Moyce table at their
+    times within T_range (mean, mean of |.|, max |.|); height: absolute error
+    of H at their times within the run. Also the best time shift of the
+    front (the experiment's gate delay) and the errors after it."""
+    T, Z, tau, H = dam_break_curves(run)
+    front = reference_table("martin_moyce_1952_front_n2_table.csv")
+    height = reference_table("martin_moyce_1952_height_n2_table.csv")
+    sel = (front[:, 0] >= T_range[0]) & (front[:, 0] <= T_range[1]) & (front[:, 0] <= T.max())
+    Zs = np.interp(front[sel, 0], T, Z)
+    ez = (Zs - front[sel, 1]) / front[sel, 1]
+    shifts = np.linspace(0, 0.6, 61)
+    shifted = [np.abs((np.interp(front[sel, 0] - d, T, Z) - front[sel, 1]) / front[sel, 1]).mean() for d in shifts]
+    best = int(np.argmin(shifted))
+    selh = height[:, 0] <= tau.max()
+    eh = np.interp(height[selh, 0], tau, H) - height[selh, 1]
+    return {
+        "front_mean_error": float(ez.mean()),
+        "front_mean_abs_error": float(np.abs(ez).mean()),
+        "front_max_abs_error": float(np.abs(ez).max()),
+        "front_points": int(sel.sum()),
+        "front_best_shift_T": float(shifts[best]),
+        "front_mean_abs_error_shifted": float(shifted[best]),
+        "height_max_abs_error": float(np.abs(eh).max()) if selh.any() else float("nan"),
+        "height_mean_abs_error": float(np.abs(eh).mean()) if selh.any() else float("nan"),
+        "height_points": int(selh.sum()),
+    }
