@@ -224,6 +224,17 @@ void checkKeyRanges(const CaseConfig& c) {
   }
 }
 
+// A number as case-file text: integers as integers (100000, not 1e+05,
+// which CLI11 does not read back as an integer), reals as the shortest
+// decimal that reads back the same.
+namespace {
+template <class T>
+std::string numberText(T x) {
+  if constexpr (std::is_same_v<T, Real>) return shortestDecimal(x);
+  else return std::to_string(x);
+}
+}  // namespace
+
 std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
   return std::visit(
       [&](auto member) -> std::string {
@@ -242,11 +253,10 @@ std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
         } else if constexpr (std::is_same_v<T, std::vector<Real>> || std::is_same_v<T, std::vector<long>>) {
           if (value.empty()) return "";
           std::string list = "[";
-          for (std::size_t i = 0; i < value.size(); ++i)
-            list += (i ? ", " : "") + shortestDecimal(static_cast<double>(value[i]));
+          for (std::size_t i = 0; i < value.size(); ++i) list += (i ? ", " : "") + numberText(value[i]);
           return list + "]";
         } else {
-          return shortestDecimal(static_cast<double>(value));
+          return numberText(value);
         }
       },
       k.field);
