@@ -4,7 +4,10 @@
 #include "sph/io/number_format.hpp"
 #include "sph/methods.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <map>
 #include <sstream>
 
 namespace sph {
@@ -267,11 +270,28 @@ bool isRunOnlyKey(const KeySpec& k) {
   return name == "resume" || name == "overwrite";
 }
 
+namespace {
+const char* const kResumeKeys[] = {"end_time", "output_every", "output_interval", "threads", "progress"};
+}
+
+bool isResumeKey(const std::string& name) {
+  return std::find(std::begin(kResumeKeys), std::end(kResumeKeys), name) != std::end(kResumeKeys);
+}
+
+std::string resumeKeysText() {
+  std::string text;
+  const std::size_t n = std::size(kResumeKeys);
+  for (std::size_t i = 0; i < n; ++i) text += (i == 0 ? "" : i + 1 == n ? " and " : ", ") + std::string(kResumeKeys[i]);
+  return text;
+}
+
 std::string resolvedCaseText(const CaseConfig& c) {
   std::string text =
       "# The case as this run resolved it: every key with the value used (defaults\n"
-      "# filled in, command-line flags applied). `sph run` on this file repeats the run;\n"
-      "# `sph run --resume` of its folder reads it.\n";
+      "# filled in, command-line flags applied; keys nothing reads are comments).\n"
+      "# `sph run` on this file repeats the run; `sph run --resume` of its folder reads it.\n";
+  std::map<std::string, std::string> unused;
+  for (const auto& [key, why] : unusedKeys(c)) unused[key] = why;
   KeyGroup group = KeyGroup::kScene;
   bool first = true;
   for (const KeySpec& k : caseKeys()) {
@@ -280,7 +300,9 @@ std::string resolvedCaseText(const CaseConfig& c) {
     first = false;
     group = k.group;
     const std::string value = keyValueText(c, k);
-    text += value.empty() ? std::string("# ") + k.name + ": none\n" : std::string(k.name) + " = " + value + "\n";
+    if (value.empty()) text += std::string("# ") + k.name + ": none\n";
+    else if (unused.count(k.name)) text += std::string("# ") + k.name + " = " + value + "  (not used: " + unused[k.name] + ")\n";
+    else text += std::string(k.name) + " = " + value + "\n";
   }
   return text;
 }
