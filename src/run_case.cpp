@@ -23,8 +23,9 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -374,11 +375,17 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     return adaptive ? scene.time() >= c.endTime * (1 - 1e-12) : scene.stepIndex() >= steps;
   };
   // Output: every output_every steps, or at every multiple of output_interval
-  // after the start (adaptive steps land on them).
+  // after the start (adaptive steps land on them). The k-th output time is
+  // the double nearest the decimal start + k interval (15 digits), so that
+  // it reads 0.3, not 0.30000000000000004.
   const bool byInterval = c.outputInterval > 0;
   auto outputIndex = [&](Real t) { return std::floor((t - startTime) / c.outputInterval * (1 + 1e-12) + 1e-9); };
-  Real nextOutput = byInterval ? startTime + (outputIndex(scene.time()) + 1) * c.outputInterval
-                               : std::numeric_limits<Real>::infinity();
+  auto outputTime = [&](Real k) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.15g", startTime + k * c.outputInterval);
+    return std::strtod(text, nullptr);
+  };
+  Real nextOutput = byInterval ? outputTime(outputIndex(scene.time()) + 1) : std::numeric_limits<Real>::infinity();
 
   const bool terminal = isatty(STDERR_FILENO);
   const bool showLiveLine = c.progress && terminal;
@@ -442,7 +449,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       if (outputDue || finished() || stopSignal() != 0) {
         output.write(scene);
         saveRecord();
-        if (byInterval) nextOutput = startTime + (outputIndex(scene.time()) + 1) * c.outputInterval;
+        if (byInterval) nextOutput = outputTime(outputIndex(scene.time()) + 1);
       }
       if (c.progress && secondsSince(lastProgress) > progressEvery) {
         lastProgress = Clock::now();
