@@ -218,12 +218,14 @@ struct TimeStepStats {
   }
 };
 
-// What the run record says about the case: every key's value and the keys set.
-void describeCase(RunRecord& r, const CaseConfig& c) {
+// What the run record says about the case: every key's value and the keys
+// set. A resume changes only the keys it may (case_keys.hpp) and keeps the
+// command line that started the run (its own goes to resumed_at).
+void describeCase(RunRecord& r, const CaseConfig& c, bool resuming) {
   for (const KeySpec& k : caseKeys())
-    if (!isRunOnlyKey(k)) r.caseValues[k.name] = keyValueText(c, k);
+    if (!isRunOnlyKey(k) && (!resuming || isResumeKey(k.name))) r.caseValues[k.name] = keyValueText(c, k);
   r.given.assign(c.given.begin(), c.given.end());
-  r.commandLine = c.commandLine;
+  if (!resuming) r.commandLine = c.commandLine;
   r.caseFile = c.caseFile;
   r.dimension = c.dimension;
   r.model = c.model;
@@ -341,13 +343,15 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         << " to a wall; the walls move them to distance h on the first step\n";
 
   RunRecord record = resuming ? previous : RunRecord{};
-  describeCase(record, c);
+  describeCase(record, c, resuming);
   record.name = c.name;
   record.status = "running";
   record.message.clear();
   if (resuming) {
+    std::string command;
+    for (const std::string& a : c.commandLine) command += (command.empty() ? "" : " ") + a;
     record.resumedAt.push_back("step " + std::to_string(resumeStep) + ", t = " + shortestDecimal(resumeTime) +
-                               " s, at " + isoNow());
+                               " s, at " + isoNow() + ", by: " + command);
   } else {
     record.started = isoNow();
     record.startTime = startTime;
@@ -406,7 +410,10 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     writeRunRecord(dir, record);
   };
   try {
+    // run.json first: a folder holding any file of this run holds its record,
+    // so that a run killed at any moment can be resumed or overwritten.
     writeFileAtomically((dir / "run.case").string(), resolvedCaseText(c));
+    saveRecord();
     if (!resuming) output.write(scene);
     saveRecord();
     while (!finished()) {

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <vector>
 
 namespace sph {
 namespace {
@@ -177,6 +178,18 @@ std::size_t removeRunFiles(const std::filesystem::path& dir) {
     if (std::filesystem::path(f).has_parent_path() || f == "." || f == "..") continue;
     if (std::filesystem::is_regular_file(p, ec)) removed += std::filesystem::remove(p, ec);
   }
+  // Snapshots named like this run's whose write the record did not see yet
+  // (a run killed between writing a snapshot and its record).
+  std::vector<std::filesystem::path> unrecorded;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string f = e.path().filename().string(), prefix = r.name + "_";
+    const bool snapshot = f.size() > prefix.size() + 4 && f.rfind(prefix, 0) == 0 &&
+                          f.compare(f.size() - 4, 4, ".vtp") == 0 &&
+                          std::all_of(f.begin() + static_cast<long>(prefix.size()), f.end() - 4,
+                                      [](char ch) { return ch >= '0' && ch <= '9'; });
+    if (snapshot && e.is_regular_file(ec)) unrecorded.push_back(e.path());
+  }
+  for (const auto& p : unrecorded) removed += std::filesystem::remove(p, ec);
   for (const char* f : {kCaseFile, kRecordFile})
     if (std::filesystem::is_regular_file(dir / f, ec)) removed += std::filesystem::remove(dir / f, ec);
   return removed + removeStaleTemporaries(dir);
