@@ -21,6 +21,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -404,7 +405,13 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   auto saveRecord = [&] {
     record.simulatedTime = scene.time();
     record.step = scene.stepIndex();
-    record.threadsUsed = tuner.history();
+    // Threads over the whole run: a resume adds to what the run used before.
+    record.threadsUsed = previous.threadsUsed;
+    record.threadSeconds = previous.threadSeconds;
+    for (int t : tuner.history())
+      if (std::find(record.threadsUsed.begin(), record.threadsUsed.end(), t) == record.threadsUsed.end())
+        record.threadsUsed.push_back(t);
+    for (const auto& [t, seconds] : tuner.secondsWith()) record.threadSeconds[t] += seconds;
     record.addFile("run.json");
     record.addFile("run.case");
     writeRunRecord(dir, record);
@@ -521,9 +528,24 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
                     dtStats.dtMax, dtStats.mostOften().c_str(),
                     100.0 * static_cast<double>(dtStats.criteria.at(dtStats.mostOften())) /
                         static_cast<double>(dtStats.steps()));
-    std::string threads;
-    for (int t : tuner.history()) threads += (threads.empty() ? "" : " then ") + std::to_string(t);
-    if (auto_threads) threads += " (auto)";
+    // "2", or with auto the count it ended with and the share of the
+    // stepping time of each count it timed: "2 (auto: 2 threads 96%, 1 4%)".
+    std::string threads = std::to_string(tuner.threads());
+    if (auto_threads && stepSeconds > 0) {
+      std::vector<std::pair<double, int>> shares;
+      for (const auto& [t, seconds] : tuner.secondsWith()) shares.emplace_back(seconds, t);
+      std::sort(shares.rbegin(), shares.rend());
+      threads += " (auto:";
+      for (std::size_t k = 0; k < shares.size(); ++k) {
+        char part[64];
+        std::snprintf(part, sizeof part, "%s %d%s %.0f%%", k ? "," : "", shares[k].second,
+                      k ? "" : shares[k].second == 1 ? " thread" : " threads", 100 * shares[k].first / stepSeconds);
+        threads += part;
+      }
+      threads += ")";
+    } else if (auto_threads) {
+      threads += " (auto)";
+    }
     char buf[1024];
     std::snprintf(buf, sizeof buf,
                   "sph: %s  (model %s, %dD)%s\n"

@@ -53,7 +53,9 @@ void writeRunRecord(const std::filesystem::path& dir, const RunRecord& r) {
     else j["case"][k] = json::parse(v, nullptr, false).is_discarded() ? json(v) : json::parse(v);
   }
   j["given_keys"] = r.given;
-  j["threads"] = {{"asked", r.threadMode}, {"used", r.threadsUsed}};
+  json seconds = json::object();
+  for (const auto& [count, s] : r.threadSeconds) seconds[std::to_string(count)] = s;
+  j["threads"] = {{"asked", r.threadMode}, {"used", r.threadsUsed}, {"stepping_seconds", seconds}};
   j["started"] = r.started;
   j["ended"] = r.ended;
   j["resumed_at"] = r.resumedAt;
@@ -98,6 +100,8 @@ RunRecord readRunRecord(const std::filesystem::path& dir) {
     r.given = j.at("given_keys").get<std::vector<std::string>>();
     r.threadMode = j.at("threads").at("asked").get<std::string>();
     r.threadsUsed = j.at("threads").at("used").get<std::vector<int>>();
+    for (const auto& [count, s] : j.at("threads").at("stepping_seconds").items())
+      r.threadSeconds[std::stoi(count)] = s.get<double>();
     r.started = j.at("started").get<std::string>();
     r.ended = j.at("ended").get<std::string>();
     r.resumedAt = j.at("resumed_at").get<std::vector<std::string>>();

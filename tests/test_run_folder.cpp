@@ -472,6 +472,8 @@ BOOST_AUTO_TEST_CASE(run_json_records_the_run) {
 
   BOOST_TEST(j["threads"]["asked"] == "1");
   BOOST_TEST((j["threads"]["used"].get<std::vector<int>>() == std::vector<int>{1}));
+  BOOST_TEST(j["threads"]["stepping_seconds"]["1"].get<double>() > 0);
+  BOOST_TEST(j["threads"]["stepping_seconds"].size() == 1u);
   const std::regex iso(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)");
   BOOST_TEST(std::regex_match(j["started"].get<std::string>(), iso));
   BOOST_TEST(std::regex_match(j["ended"].get<std::string>(), iso));

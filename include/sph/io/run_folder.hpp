@@ -39,7 +39,8 @@ struct RunRecord {
   std::string model;
   // how it ran
   std::string threadMode;              // "auto" or the count asked for
-  std::vector<int> threadsUsed;        // every thread count it ran with, in order
+  std::vector<int> threadsUsed;        // every thread count it ran with, in the order first used
+  std::map<int, double> threadSeconds; // stepping time with each count
   std::string started, ended;          // ISO 8601 UTC
   std::string status = "running";      // running | finished | interrupted | blew_up | write_failed
   std::string message;
