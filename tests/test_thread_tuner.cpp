@@ -53,6 +53,14 @@ BOOST_AUTO_TEST_CASE(judges_by_mean_step_time) {
   BOOST_TEST(chosen == 1);
 }
 
+// A count far slower than the present one is timed in one slice only.
+BOOST_AUTO_TEST_CASE(times_a_far_slower_count_once) {
+  KeepThreads keep;
+  ThreadTuner tuner(kLarge, 2, 2.0);  // starts with 1
+  BOOST_TEST(simulate(tuner, 1000, [](int t, long) { return t == 2 ? 20e-3 : 2e-3; }) == 1);
+  BOOST_TEST(tuner.secondsWith().at(2) == 0.1, tt::tolerance(0.25));  // one slice of 0.1 s (+ its warm-up step)
+}
+
 BOOST_AUTO_TEST_CASE(keeps_the_present_count_against_a_small_gain) {
   KeepThreads keep;
   ThreadTuner tuner(kLarge, 2, 0.0);  // starts with 2

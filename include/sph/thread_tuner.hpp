@@ -6,7 +6,8 @@
 // cores this process may use (its CPU affinity) less the load average, then
 // times each candidate count (that one, half of it, ... 1) in turn, in
 // slices of at least `sliceSeconds` of stepping, `rounds` times round (so
-// that a change of load during the trial hits every candidate alike), and
+// that a change of load during the trial hits every candidate alike; a
+// count twice as slow as the present best is not timed again), and
 // keeps the fastest by mean step time: throughput is total time, and the
 // rare very slow step of an oversubscribed team is what a median would
 // hide. A count is kept unless another is at least 5% faster. The
@@ -101,7 +102,13 @@ class ThreadTuner {
     sliceTime_ += seconds;
     ++sliceSteps_;
     if (sliceTime_ < settings_.sliceSeconds || sliceSteps_ < kMinSliceSteps) return;
-    if (++trial_ < static_cast<int>(order_.size()) * settings_.rounds) {
+    // A count more than twice as slow as the present best is out of the
+    // remaining rounds: beside a competing program 2 threads can be 20
+    // times slower, and timing them again would cost more than it tells.
+    if (k > 0 && perStep(k) > kLoser * perStep(0)) out_[k] = true;
+    const int slices = static_cast<int>(order_.size()) * settings_.rounds;
+    while (++trial_ < slices && out_[static_cast<std::size_t>(trial_) % order_.size()]) {}
+    if (trial_ < slices) {
       startSlice(order_[static_cast<std::size_t>(trial_) % order_.size()]);
       return;
     }
@@ -136,6 +143,7 @@ class ThreadTuner {
  private:
   ThreadTuner() = default;
   static constexpr int kMinSliceSteps = 2;
+  static constexpr double kLoser = 2;          // this much slower than the best: timed once only
   static constexpr double kWindowSeconds = 1;  // stepping time over which a slowdown is judged
 
   double perStep(std::size_t c) const { return steps_[c] ? time_[c] / static_cast<double>(steps_[c]) : 1e300; }
@@ -163,6 +171,7 @@ class ThreadTuner {
     for (int t : candidates_)
       if (t != best_) order_.push_back(t);
     trial_ = 0;
+    out_.assign(order_.size(), false);
     time_.assign(order_.size(), 0);
     steps_.assign(order_.size(), 0);
     startSlice(best_);
@@ -186,6 +195,7 @@ class ThreadTuner {
   std::vector<int> order_;       // the order of the present trial (best first)
   std::vector<double> time_;     // stepping time of each in order_ in this trial
   std::vector<long> steps_;      // and its steps
+  std::vector<bool> out_;        // timed once and far slower: not timed again in this trial
   int best_ = 1, current_ = 1;
   int trial_ = -1;               // slice being timed (candidate trial_ % size); -1: running with best_
   bool skip_ = false;
