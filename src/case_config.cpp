@@ -38,6 +38,11 @@ long stepsFor(const CaseConfig& c) {
 }
 
 void validateCase(const CaseConfig& c) {
+  // The output keys first: output_interval's range includes its "off" value 0.
+  if (c.isGiven("output_every") && c.isGiven("output_interval"))
+    throw CaseError("output_every and output_interval are both given: choose one (steps or seconds of simulated time)");
+  if (c.isGiven("output_interval") && !(c.outputInterval > 0))
+    throw CaseError("output_interval = " + fmt(c.outputInterval) + " is out of range: it must be > 0 (seconds of simulated time)");
   checkKeyRanges(c);  // every key against its own range and choices (case_keys.cpp)
   const bool seed = c.model == "seed_wcsph";
   if (seed) {
@@ -58,10 +63,6 @@ void validateCase(const CaseConfig& c) {
       c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
     throw CaseError("name = \"" + c.name + "\" is not allowed: use letters, digits, '_', '-' and '.' (not . or ..)");
   requestedThreads(c);
-  if (c.isGiven("output_every") && c.isGiven("output_interval"))
-    throw CaseError("output_every and output_interval are both given: choose one (steps or seconds of simulated time)");
-  if (c.isGiven("output_interval") && !(c.outputInterval > 0))
-    throw CaseError("output_interval = " + fmt(c.outputInterval) + " is out of range: it must be > 0 (seconds of simulated time)");
   if (c.endTime / c.dt > kMaxSteps)
     throw CaseError("end_time / dt = " + fmt(c.endTime / c.dt) + " steps is out of range: at most " +
                     fmt(kMaxSteps) + " (raise dt or lower end_time)");
@@ -146,12 +147,10 @@ int requestedThreads(const CaseConfig& c) {
   return static_cast<int>(n);
 }
 
-std::vector<std::string> unusedKeyNotes(const CaseConfig& given) {
+std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& given) {
   const CaseConfig c = withDefaults(given);
-  std::vector<std::string> notes;
-  auto note = [&](const char* key, const std::string& why) {
-    if (c.isGiven(key)) notes.push_back(std::string("key '") + key + "' is not used: " + why);
-  };
+  std::vector<std::pair<std::string, std::string>> unused;
+  auto note = [&](const char* key, const std::string& why) { unused.emplace_back(key, why); };
   // Keys a method owns are used when that method is chosen.
   auto owned = [&](const char* key, const std::vector<std::string>& owners, const std::string& chosen,
                    const char* category) {
@@ -177,10 +176,20 @@ std::vector<std::string> unusedKeyNotes(const CaseConfig& given) {
   if (c.starMass == 0)
     for (const char* key : {"star_radius", "star_particles", "star_center", "star_velocity", "seed"})
       note(key, "there is no toy star (star_mass = 0)");
+  // (spacing stays used: it is the particle spacing the snapshots record.)
   if (!c.particleFile.empty())
-    for (const char* key : {"block_min", "block_max", "disc_center", "disc_radius", "points", "spacing", "velocity"})
+    for (const char* key : {"block_min", "block_max", "disc_center", "disc_radius", "points", "velocity"})
       note(key, "particle_file " + c.particleFile + " replaces the generators");
-  if (c.cfl == 0 && c.isGiven("cfl")) note("cfl", "cfl = 0 is a fixed time step");
+  if (c.cfl == 0) note("cfl", "cfl = 0 is a fixed time step");
+  if (c.outputInterval > 0) note("output_every", "output_interval is used");
+  else note("output_interval", "output_interval is off; output_every is used");
+  return unused;
+}
+
+std::vector<std::string> unusedKeyNotes(const CaseConfig& c) {
+  std::vector<std::string> notes;
+  for (const auto& [key, why] : unusedKeys(c))
+    if (c.isGiven(key)) notes.push_back("key '" + key + "' is not used: " + why);
   return notes;
 }
 

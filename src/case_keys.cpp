@@ -4,7 +4,10 @@
 #include "sph/io/number_format.hpp"
 #include "sph/methods.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <map>
 #include <sstream>
 
 namespace sph {
@@ -258,6 +261,17 @@ void checkKeyRanges(const CaseConfig& c) {
   }
 }
 
+// A number as case-file text: integers as integers (100000, not 1e+05,
+// which CLI11 does not read back as an integer), reals as the shortest
+// decimal that reads back the same.
+namespace {
+template <class T>
+std::string numberText(T x) {
+  if constexpr (std::is_same_v<T, Real>) return shortestDecimal(x);
+  else return std::to_string(x);
+}
+}  // namespace
+
 std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
   return std::visit(
       [&](auto member) -> std::string {
@@ -276,11 +290,10 @@ std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
         } else if constexpr (std::is_same_v<T, std::vector<Real>> || std::is_same_v<T, std::vector<long>>) {
           if (value.empty()) return "";
           std::string list = "[";
-          for (std::size_t i = 0; i < value.size(); ++i)
-            list += (i ? ", " : "") + shortestDecimal(static_cast<double>(value[i]));
+          for (std::size_t i = 0; i < value.size(); ++i) list += (i ? ", " : "") + numberText(value[i]);
           return list + "]";
         } else {
-          return shortestDecimal(static_cast<double>(value));
+          return numberText(value);
         }
       },
       k.field);
@@ -291,11 +304,28 @@ bool isRunOnlyKey(const KeySpec& k) {
   return name == "resume" || name == "overwrite";
 }
 
+namespace {
+const char* const kResumeKeys[] = {"end_time", "output_every", "output_interval", "threads", "progress"};
+}
+
+bool isResumeKey(const std::string& name) {
+  return std::find(std::begin(kResumeKeys), std::end(kResumeKeys), name) != std::end(kResumeKeys);
+}
+
+std::string resumeKeysText() {
+  std::string text;
+  const std::size_t n = std::size(kResumeKeys);
+  for (std::size_t i = 0; i < n; ++i) text += (i == 0 ? "" : i + 1 == n ? " and " : ", ") + std::string(kResumeKeys[i]);
+  return text;
+}
+
 std::string resolvedCaseText(const CaseConfig& c) {
   std::string text =
       "# The case as this run resolved it: every key with the value used (defaults\n"
-      "# filled in, command-line flags applied). `sph run` on this file repeats the run;\n"
-      "# `sph run --resume` of its folder reads it.\n";
+      "# filled in, command-line flags applied; keys nothing reads are comments).\n"
+      "# `sph run` on this file repeats the run; `sph run --resume` of its folder reads it.\n";
+  std::map<std::string, std::string> unused;
+  for (const auto& [key, why] : unusedKeys(c)) unused[key] = why;
   KeyGroup group = KeyGroup::kScene;
   bool first = true;
   for (const KeySpec& k : caseKeys()) {
@@ -304,7 +334,9 @@ std::string resolvedCaseText(const CaseConfig& c) {
     first = false;
     group = k.group;
     const std::string value = keyValueText(c, k);
-    text += value.empty() ? std::string("# ") + k.name + ": none\n" : std::string(k.name) + " = " + value + "\n";
+    if (value.empty()) text += std::string("# ") + k.name + ": none\n";
+    else if (unused.count(k.name)) text += std::string("# ") + k.name + " = " + value + "  (not used: " + unused[k.name] + ")\n";
+    else text += std::string(k.name) + " = " + value + "\n";
   }
   return text;
 }

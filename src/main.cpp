@@ -141,6 +141,33 @@ std::set<std::string> commandLineKeys(int argc, char** argv) {
   return keys;
 }
 
+// A flag overrides the case file, also across the two output keys: an
+// output key on the command line replaces the other one of the file (or of
+// the run a resume continues). Both on the command line stay an error.
+void preferCommandLineOutputKey(sph::CaseConfig& c, const std::set<std::string>& flags) {
+  const bool every = flags.count("output_every") > 0, interval = flags.count("output_interval") > 0;
+  if (interval && !every) c.given.erase("output_every");
+  if (every && !interval) {
+    c.given.erase("output_interval");
+    c.outputInterval = 0;
+  }
+}
+
+// A resumed run continues the one in its folder: a flag that would change
+// that run (its physics, dt, name, folder, ...) is refused, naming it.
+std::string resumeRefusal(const std::set<std::string>& flags, const std::string& folder) {
+  for (const std::string& key : flags) {
+    if (key == "output")
+      return "resume: --output does not go with --resume: the run continues in its own folder " + folder;
+    if (key == "overwrite") return "overwrite and resume go against each other: give one";
+    const sph::KeySpec* k = sph::findKey(key);
+    if (sph::isResumeKey(key) || (k && sph::isRunOnlyKey(*k))) continue;
+    return "resume: --" + key + " cannot change when a run is resumed (only " + sph::resumeKeysText() +
+           " can); to change it, start a new run from a snapshot with --particle_file";
+  }
+  return "";
+}
+
 // The folder of --resume DIR (or --resume=DIR), "" without one.
 std::string resumeFolder(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
@@ -185,6 +212,11 @@ int runCommand(int argc, char** argv) {
     return fail("case file " + run.get_config_ptr()->as<std::string>() + line + ": " + e.what());
   }
   c.caseFile = run.get_config_ptr()->as<std::string>();
+  const std::set<std::string> flags = commandLineKeys(argc, argv);
+  if (!resume.empty()) {
+    const std::string refusal = resumeRefusal(flags, resume);
+    if (!refusal.empty()) return fail(refusal);
+  }
   c.commandLine.assign(argv, argv + argc);
   c.commandLine.insert(c.commandLine.begin(), "sph");
   if (!resume.empty()) {
@@ -196,8 +228,7 @@ int runCommand(int argc, char** argv) {
     } catch (const std::exception& e) {
       return fail(std::string("resume: ") + e.what());
     }
-    const auto cliKeys = commandLineKeys(argc, argv);
-    c.given.insert(cliKeys.begin(), cliKeys.end());
+    c.given.insert(flags.begin(), flags.end());
     c.given.erase("resume");
     c.output = resume;
     c.resume = resume;
@@ -205,13 +236,7 @@ int runCommand(int argc, char** argv) {
     c.given = givenKeys(run);
     if (run.count("--name") == 0) c.name = sph::defaultRunName(c.caseFile);
   }
-  // One output rule: a flag for one replaces the case file's other.
-  const auto flags = commandLineKeys(argc, argv);
-  if (flags.count("output_every") && !flags.count("output_interval")) {
-    c.outputInterval = 0;
-    c.given.erase("output_interval");
-  }
-  if (flags.count("output_interval") && !flags.count("output_every")) c.given.erase("output_every");
+  preferCommandLineOutputKey(c, flags);
   if (c.output.empty()) c.output = (std::filesystem::path("runs") / c.name).string();
   if (c.dimension == 3) return sph::runCase<3>(c, std::cout, std::cerr);
   if (c.dimension == 2) return sph::runCase<2>(c, std::cout, std::cerr);

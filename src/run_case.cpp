@@ -21,10 +21,12 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -217,12 +219,14 @@ struct TimeStepStats {
   }
 };
 
-// What the run record says about the case: every key's value and the keys set.
-void describeCase(RunRecord& r, const CaseConfig& c) {
+// What the run record says about the case: every key's value and the keys
+// set. A resume changes only the keys it may (case_keys.hpp) and keeps the
+// command line that started the run (its own goes to resumed_at).
+void describeCase(RunRecord& r, const CaseConfig& c, bool resuming) {
   for (const KeySpec& k : caseKeys())
-    if (!isRunOnlyKey(k)) r.caseValues[k.name] = keyValueText(c, k);
+    if (!isRunOnlyKey(k) && (!resuming || isResumeKey(k.name))) r.caseValues[k.name] = keyValueText(c, k);
   r.given.assign(c.given.begin(), c.given.end());
-  r.commandLine = c.commandLine;
+  if (!resuming) r.commandLine = c.commandLine;
   r.caseFile = c.caseFile;
   r.dimension = c.dimension;
   r.model = c.model;
@@ -340,13 +344,15 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         << " to a wall; the walls move them to distance h on the first step\n";
 
   RunRecord record = resuming ? previous : RunRecord{};
-  describeCase(record, c);
+  describeCase(record, c, resuming);
   record.name = c.name;
   record.status = "running";
   record.message.clear();
   if (resuming) {
+    std::string command;
+    for (const std::string& a : c.commandLine) command += (command.empty() ? "" : " ") + a;
     record.resumedAt.push_back("step " + std::to_string(resumeStep) + ", t = " + shortestDecimal(resumeTime) +
-                               " s, at " + isoNow());
+                               " s, at " + isoNow() + ", by: " + command);
   } else {
     record.started = isoNow();
     record.startTime = startTime;
@@ -374,11 +380,17 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     return adaptive ? scene.time() >= c.endTime * (1 - 1e-12) : scene.stepIndex() >= steps;
   };
   // Output: every output_every steps, or at every multiple of output_interval
-  // after the start (adaptive steps land on them).
+  // after the start (adaptive steps land on them). The k-th output time is
+  // the double nearest the decimal start + k interval (15 digits), so that
+  // it reads 0.3, not 0.30000000000000004.
   const bool byInterval = c.outputInterval > 0;
   auto outputIndex = [&](Real t) { return std::floor((t - startTime) / c.outputInterval * (1 + 1e-12) + 1e-9); };
-  Real nextOutput = byInterval ? startTime + (outputIndex(scene.time()) + 1) * c.outputInterval
-                               : std::numeric_limits<Real>::infinity();
+  auto outputTime = [&](Real k) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.15g", startTime + k * c.outputInterval);
+    return std::strtod(text, nullptr);
+  };
+  Real nextOutput = byInterval ? outputTime(outputIndex(scene.time()) + 1) : std::numeric_limits<Real>::infinity();
 
   const bool terminal = isatty(STDERR_FILENO);
   const bool showLiveLine = c.progress && terminal;
@@ -393,13 +405,22 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   auto saveRecord = [&] {
     record.simulatedTime = scene.time();
     record.step = scene.stepIndex();
-    record.threadsUsed = tuner.history();
+    // Threads over the whole run: a resume adds to what the run used before.
+    record.threadsUsed = previous.threadsUsed;
+    record.threadSeconds = previous.threadSeconds;
+    for (int t : tuner.history())
+      if (std::find(record.threadsUsed.begin(), record.threadsUsed.end(), t) == record.threadsUsed.end())
+        record.threadsUsed.push_back(t);
+    for (const auto& [t, seconds] : tuner.secondsWith()) record.threadSeconds[t] += seconds;
     record.addFile("run.json");
     record.addFile("run.case");
     writeRunRecord(dir, record);
   };
   try {
+    // run.json first: a folder holding any file of this run holds its record,
+    // so that a run killed at any moment can be resumed or overwritten.
     writeFileAtomically((dir / "run.case").string(), resolvedCaseText(c));
+    saveRecord();
     if (!resuming) output.write(scene);
     saveRecord();
     while (!finished()) {
@@ -442,7 +463,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       if (outputDue || finished() || stopSignal() != 0) {
         output.write(scene);
         saveRecord();
-        if (byInterval) nextOutput = startTime + (outputIndex(scene.time()) + 1) * c.outputInterval;
+        if (byInterval) nextOutput = outputTime(outputIndex(scene.time()) + 1);
       }
       if (c.progress && secondsSince(lastProgress) > progressEvery) {
         lastProgress = Clock::now();
@@ -507,9 +528,24 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
                     dtStats.dtMax, dtStats.mostOften().c_str(),
                     100.0 * static_cast<double>(dtStats.criteria.at(dtStats.mostOften())) /
                         static_cast<double>(dtStats.steps()));
-    std::string threads;
-    for (int t : tuner.history()) threads += (threads.empty() ? "" : " then ") + std::to_string(t);
-    if (auto_threads) threads += " (auto)";
+    // "2", or with auto the count it ended with and the share of the
+    // stepping time of each count it timed: "2 (auto: 2 threads 96%, 1 4%)".
+    std::string threads = std::to_string(tuner.threads());
+    if (auto_threads && stepSeconds > 0) {
+      std::vector<std::pair<double, int>> shares;
+      for (const auto& [t, seconds] : tuner.secondsWith()) shares.emplace_back(seconds, t);
+      std::sort(shares.rbegin(), shares.rend());
+      threads += " (auto:";
+      for (std::size_t k = 0; k < shares.size(); ++k) {
+        char part[64];
+        std::snprintf(part, sizeof part, "%s %d%s %.0f%%", k ? "," : "", shares[k].second,
+                      k ? "" : shares[k].second == 1 ? " thread" : " threads", 100 * shares[k].first / stepSeconds);
+        threads += part;
+      }
+      threads += ")";
+    } else if (auto_threads) {
+      threads += " (auto)";
+    }
     char buf[1024];
     std::snprintf(buf, sizeof buf,
                   "sph: %s  (model %s, %dD)%s\n"

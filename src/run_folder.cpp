@@ -11,6 +11,7 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <vector>
 
 namespace sph {
 namespace {
@@ -52,7 +53,9 @@ void writeRunRecord(const std::filesystem::path& dir, const RunRecord& r) {
     else j["case"][k] = json::parse(v, nullptr, false).is_discarded() ? json(v) : json::parse(v);
   }
   j["given_keys"] = r.given;
-  j["threads"] = {{"asked", r.threadMode}, {"used", r.threadsUsed}};
+  json seconds = json::object();
+  for (const auto& [count, s] : r.threadSeconds) seconds[std::to_string(count)] = s;
+  j["threads"] = {{"asked", r.threadMode}, {"used", r.threadsUsed}, {"stepping_seconds", seconds}};
   j["started"] = r.started;
   j["ended"] = r.ended;
   j["resumed_at"] = r.resumedAt;
@@ -97,6 +100,8 @@ RunRecord readRunRecord(const std::filesystem::path& dir) {
     r.given = j.at("given_keys").get<std::vector<std::string>>();
     r.threadMode = j.at("threads").at("asked").get<std::string>();
     r.threadsUsed = j.at("threads").at("used").get<std::vector<int>>();
+    for (const auto& [count, s] : j.at("threads").at("stepping_seconds").items())
+      r.threadSeconds[std::stoi(count)] = s.get<double>();
     r.started = j.at("started").get<std::string>();
     r.ended = j.at("ended").get<std::string>();
     r.resumedAt = j.at("resumed_at").get<std::vector<std::string>>();
@@ -177,6 +182,18 @@ std::size_t removeRunFiles(const std::filesystem::path& dir) {
     if (std::filesystem::path(f).has_parent_path() || f == "." || f == "..") continue;
     if (std::filesystem::is_regular_file(p, ec)) removed += std::filesystem::remove(p, ec);
   }
+  // Snapshots named like this run's whose write the record did not see yet
+  // (a run killed between writing a snapshot and its record).
+  std::vector<std::filesystem::path> unrecorded;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string f = e.path().filename().string(), prefix = r.name + "_";
+    const bool snapshot = f.size() > prefix.size() + 4 && f.rfind(prefix, 0) == 0 &&
+                          f.compare(f.size() - 4, 4, ".vtp") == 0 &&
+                          std::all_of(f.begin() + static_cast<long>(prefix.size()), f.end() - 4,
+                                      [](char ch) { return ch >= '0' && ch <= '9'; });
+    if (snapshot && e.is_regular_file(ec)) unrecorded.push_back(e.path());
+  }
+  for (const auto& p : unrecorded) removed += std::filesystem::remove(p, ec);
   for (const char* f : {kCaseFile, kRecordFile})
     if (std::filesystem::is_regular_file(dir / f, ec)) removed += std::filesystem::remove(dir / f, ec);
   return removed + removeStaleTemporaries(dir);

@@ -89,8 +89,10 @@ def main():
     ap.add_argument("--case")
     ap.add_argument("--workdir")
     ap.add_argument("--run", help="measure this run folder instead of running the case")
-    ap.add_argument("extra", nargs="*", help="extra sph flags (after --)")
-    args = ap.parse_args()
+    argv = sys.argv[1:]
+    extra = argv[argv.index("--") + 1:] if "--" in argv else []
+    args = ap.parse_args(argv[:argv.index("--")] if "--" in argv else argv)
+    args.extra = extra
     ok = {"hydrostatic": hydrostatic, "dam_break": dam_break}[args.what](args)
     print("PASSED" if ok else "FAILED")
     sys.exit(0 if ok else 1)

@@ -13,6 +13,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sph {
@@ -121,8 +122,11 @@ void validateWallsAndDensity(const CaseConfig& c);
 // The thread count a validated `threads` key asks for (0: auto).
 int requestedThreads(const CaseConfig& c);
 
-// Keys the case sets that nothing it chose reads (alpha with the seed
-// model, gamma with a linear EOS, ...), each with the reason.
+// Keys that nothing the case chose reads (alpha with the seed model, gamma
+// with a linear EOS, output_interval with output_every, ...), given or not,
+// each with the reason; a resolved case (run.case) leaves them out.
+std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& c);
+// The warnings for the keys among those that the case sets.
 std::vector<std::string> unusedKeyNotes(const CaseConfig& c);
 
 // The first D values of a validated vector key as a Vec<D>.

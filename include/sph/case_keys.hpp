@@ -62,6 +62,11 @@ std::string keyValueText(const CaseConfig& c, const KeySpec& k);
 // resolved case.
 bool isRunOnlyKey(const KeySpec& k);
 
+// Keys a resumed run may set anew (end_time, output_every, output_interval,
+// threads, progress): the rest would change the run it continues.
+bool isResumeKey(const std::string& name);
+std::string resumeKeysText();  // "end_time, output_every, ... and progress", for messages
+
 // A case file holding every key with its value in c, by topic.
 std::string resolvedCaseText(const CaseConfig& c);
 

@@ -25,6 +25,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 #include <utility>
 #include <variant>
 
@@ -99,7 +100,13 @@ class Scene {
         },
         integrator_);
     ++step_;
-    time_ = timeStep_.adaptive() ? time_ + choice.dt : fixedStepTime(step_);
+    // A step cut to land on end_time or an output time ends exactly there
+    // (time + (t - time) can miss t by one ulp).
+    const std::string_view cut = choice.criterion;
+    if (!timeStep_.adaptive()) time_ = fixedStepTime(step_);
+    else if (cut == "end") time_ = timeStep_.endTime;
+    else if (cut == "output") time_ = landOn;
+    else time_ += choice.dt;
     return failure;
   }
 

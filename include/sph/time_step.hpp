@@ -50,10 +50,13 @@ struct TimeStepControl {
       if (nu > 0) consider(choice, 0.125 * h * h / nu, "viscous");
       if (s.a2Max > 0) consider(choice, 0.25 * std::sqrt(h / std::sqrt(s.a2Max)), "force");
     }
-    // Land exactly on end_time rather than overshoot it (adaptive only: a
-    // fixed dt keeps its value and the step count ceil(end_time / dt)).
-    if (adaptive() && time + choice.dt > endTime) choice = {endTime - time, "end"};
-    if (adaptive() && landOn > time && time + choice.dt > landOn) choice = {landOn - time, "output"};
+    // Land exactly on end_time and on landOn rather than overshoot them, or
+    // stop short of them by round-off (a step that reaches them to 1e-12
+    // lands on them). Adaptive only: a fixed dt keeps its value and the
+    // step count ceil(end_time / dt).
+    auto reaches = [&](Real t) { return time + choice.dt > t - 1e-12 * std::abs(t); };
+    if (adaptive() && reaches(endTime)) choice = {endTime - time, "end"};
+    if (adaptive() && landOn > time && reaches(landOn)) choice = {landOn - time, "output"};
     return choice;
   }
 

@@ -2,7 +2,8 @@
 //
 // A folder holds at most one run. A new run refuses a folder that holds
 // another run's files unless it is told to --overwrite them (which removes
-// the files that run listed, and nothing else) or to --resume that run; a
+// the files that run listed or named as its snapshots, and nothing else) or
+// to --resume that run; a
 // folder with sph output but no run.json, or --overwrite of a folder that
 // holds no run, is refused too, so nothing is ever removed by surprise.
 //
@@ -38,7 +39,8 @@ struct RunRecord {
   std::string model;
   // how it ran
   std::string threadMode;              // "auto" or the count asked for
-  std::vector<int> threadsUsed;        // every thread count it ran with, in order
+  std::vector<int> threadsUsed;        // every thread count it ran with, in the order first used
+  std::map<int, double> threadSeconds; // stepping time with each count
   std::string started, ended;          // ISO 8601 UTC
   std::string status = "running";      // running | finished | interrupted | blew_up | write_failed
   std::string message;
@@ -74,8 +76,9 @@ FolderContents inspectFolder(const std::filesystem::path& dir);
 // the one in dir.
 void checkOutputFolder(const std::filesystem::path& dir, bool overwrite, bool resuming);
 
-// --overwrite: removes the files the run recorded in dir's run.json lists
-// (and run.json, run.case and stale temporaries). Returns how many.
+// --overwrite: removes the files the run recorded in dir's run.json lists,
+// snapshots named like its own (<name>_NNNNN.vtp: one written just before
+// it was killed), run.json, run.case and stale temporaries. Returns how many.
 std::size_t removeRunFiles(const std::filesystem::path& dir);
 
 // Now as ISO 8601 UTC ("2026-12-01T16:38:00Z").
