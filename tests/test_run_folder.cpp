@@ -520,7 +520,8 @@ BOOST_AUTO_TEST_CASE(run_json_records_the_run) {
 
 // A run stopped early and resumed ends in the same state, bit for bit, as
 // the run never stopped: every integrator, a wcsph case with velocity-
-// dependent forces (viscosity, XSPH), the seed dam break, and adaptive steps
+// dependent forces (viscosity, XSPH), the seed dam break, the water dam
+// break (walls, continuity density), and adaptive steps
 // stopped on an output time; stopped and resumed with 1 thread and with 2
 // (results do not depend on the thread count). The series and record go on.
 // Short runs: on a loaded machine 2 threads cost milliseconds per barrier.
@@ -536,6 +537,9 @@ BOOST_AUTO_TEST_CASE(resume_is_bit_identical) {
   for (const char* integrator : {"leap_frog", "rk4", "symplectic_euler", "euler"})
     variants.push_back({integrator, wcsph, {"--integrator", integrator, "--output_every", "10"}, "0.0017", "0.004"});
   variants.push_back({"seed", test::caseFile("dam_break_seed"), {"--output_every", "10"}, "0.0023", "0.004"});
+  // Wall particles, continuity density with delta-SPH, hydrostatic start:
+  // the density and its rate are state too.
+  variants.push_back({"water", test::caseFile("dam_break_mm"), {"--output_every", "20"}, "0.0023", "0.004"});
   for (const char* integrator : {"leap_frog", "rk4"})
     variants.push_back({std::string("adaptive_") + integrator,
                         wcsph,
