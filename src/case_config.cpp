@@ -59,6 +59,7 @@ void validateCase(const CaseConfig& c) {
   }
   if (c.eos == "tait") requirePositive("c0", c.c0);
   validateWallsAndDensity(c);
+  validateProbes(c);
   if (c.name.empty() || c.name == "." || c.name == ".." ||
       c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
     throw CaseError("name = \"" + c.name + "\" is not allowed: use letters, digits, '_', '-' and '.' (not . or ..)");
@@ -181,6 +182,8 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
     for (const char* key : {"block_min", "block_max", "disc_center", "disc_radius", "points", "velocity"})
       note(key, "particle_file " + c.particleFile + " replaces the generators");
   if (c.cfl == 0) note("cfl", "cfl = 0 is a fixed time step");
+  if (c.probePoints.empty() && c.heightProbes.empty() && !c.frontProbe)
+    note("probe_interval", "there are no probes (probe_points, height_probes, front_probe)");
   if (c.outputInterval > 0) note("output_every", "output_interval is used");
   else note("output_interval", "output_interval is off; output_every is used");
   return unused;

@@ -7,6 +7,7 @@
 #include "sph/case_keys.hpp"
 #include "sph/io/atomic_file.hpp"
 #include "sph/io/number_format.hpp"
+#include "sph/io/probe_files.hpp"
 #include "sph/io/pvd_series.hpp"
 #include "sph/io/run_folder.hpp"
 #include "sph/io/vtp_io.hpp"
@@ -78,9 +79,9 @@ template <int D>
 class RunOutput {
  public:
   RunOutput(const std::filesystem::path& dir, const std::string& name, SnapshotInfo info, RunRecord& record,
-            bool adaptive)
+            bool adaptive, ProbeFiles<D> probes)
       : dir_(dir), name_(name), info_(info), series_((dir / (name + ".pvd")).string()), record_(record),
-        adaptive_(adaptive) {
+        adaptive_(adaptive), probes_(std::move(probes)) {
     energy_ = "time,kinetic,potential,total\n";
     if (adaptive_) dtLog_ = "step,time,dt,criterion\n";
   }
@@ -97,6 +98,9 @@ class RunOutput {
       dtLog_ = csvLinesWhere(dir_ / "timestep.csv", [&](double s) { return s <= static_cast<double>(step); });
       if (dtLog_.empty()) dtLog_ = "step,time,dt,criterion\n";
     }
+    probes_.resume(time, [&](const char* file) {
+      return csvLinesWhere(dir_ / file, [&](double t) { return t <= time * (1 + 1e-12); });
+    });
   }
 
   void write(const Scene<D>& scene) {
@@ -116,12 +120,22 @@ class RunOutput {
     energy_ += line;
     writeFileAtomically((dir_ / "energy.csv").string(), energy_);
     record_.addFile("energy.csv");
+    if (count_ == 0 && lastStep_ < 0) sampleProbes(scene);
+    for (const auto& f : probes_.files()) {
+      writeFileAtomically((dir_ / f.name).string(), *f.text);
+      record_.addFile(f.name);
+    }
     flushTimeSteps();
     ++count_;
     lastStep_ = scene.stepIndex();
     lastTime_ = scene.time();
     record_.snapshots = count_;
     record_.lastSnapshot = vtp;
+  }
+
+  // Probes after a step (when one is due).
+  void sampleProbes(const Scene<D>& scene) {
+    if (probes_.any()) probes_.sample(scene.particles(), scene.time(), shortestDecimal(scene.time()));
   }
 
   void addTimeStep(const Scene<D>& scene) {
@@ -151,6 +165,7 @@ class RunOutput {
   PvdSeries series_;
   RunRecord& record_;
   bool adaptive_;
+  ProbeFiles<D> probes_;
   std::string energy_, dtLog_;
   long count_ = 0;
   long lastStep_ = -1;
@@ -371,7 +386,11 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   }
   if (c.walls) info.domainMin = c.domainMin, info.domainMax = c.domainMax;
   const bool adaptive = c.cfl > 0;
-  RunOutput<D> output(dir, c.name, info, record, adaptive);
+  // Probes interpolate with the case's kernel; the seed model's kernels are
+  // its own, so there a Wendland C2 with the seed's support h stands in.
+  CaseConfig probeKernel = c;
+  if (probeKernel.kernel.empty()) probeKernel.kernel = "wendland_c2", probeKernel.h = c.h / 2;
+  RunOutput<D> output(dir, c.name, info, record, adaptive, ProbeFiles<D>(c, makeKernel<D>(probeKernel)));
   if (resuming) output.resumeAfter(resumeStep, resumeTime);
 
   // Steps of a fixed-dt run: ceil((end - start) / dt), counted from the start.
@@ -432,6 +451,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       tuner.record(dtWall);
       dtStats.add(scene.lastTimeStep());
       output.addTimeStep(scene);
+      if (!failure) output.sampleProbes(scene);
       if (failure) {
         if (showLiveLine) err << "\n";
         const std::string message = failureMessage(*failure, scene.stepIndex(), scene.time());

@@ -79,6 +79,13 @@ struct CaseConfig {
   long outputEvery = 100;
   Real outputInterval = 0;  // > 0: a snapshot every this many seconds of simulated time
 
+  // probes (sph/probes.hpp): sampled during the run into CSV files
+  std::vector<Real> probePoints;   // D values per point probe
+  std::string probeNames;          // "a, b, ...": one name per point probe
+  std::vector<Real> heightProbes;  // D - 1 horizontal coordinates per water-height gauge
+  bool frontProbe = false;         // the surge front's x
+  Real probeInterval = 0;          // seconds of simulated time between samples; 0: every step
+
   // domain (walls)
   std::vector<Real> domainMin{0, 0};
   std::vector<Real> domainMax{1, 1};
@@ -118,6 +125,9 @@ void validateCase(const CaseConfig& c);
 
 // The wall-particle and density keys (src/case_physics.cpp), part of validateCase.
 void validateWallsAndDensity(const CaseConfig& c);
+
+// The probe keys (src/case_probes.cpp), part of validateCase.
+void validateProbes(const CaseConfig& c);
 
 // The thread count a validated `threads` key asks for (0: auto).
 int requestedThreads(const CaseConfig& c);
