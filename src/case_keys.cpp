@@ -33,6 +33,7 @@ std::vector<std::string> slipNames() { return {"no_slip", "free_slip"}; }
 std::vector<std::string> densityNames() { return methodNames(densityMethods()); }
 std::vector<std::string> diffusionNames() { return {"fourtakas", "molteni"}; }
 std::vector<std::string> negativePressureNames() { return {"none", "clamp"}; }
+std::vector<std::string> regimeCheckNames() { return {"stop", "warn", "off"}; }
 
 std::string fmt(double x) {
   std::ostringstream s;
@@ -178,6 +179,10 @@ const std::vector<KeySpec>& caseKeys() {
       {"end_time", G::kNumerics, &C::endTime, "s",
        "Simulated time at which the run ends (absolute: a run continued from a snapshot at t ends there too)",
        above(0, 1e12), nullptr, nullptr},
+      {"regime_check", G::kNumerics, &C::regimeCheck, "",
+       "Every 10 steps: Mach number above 1, the fluid breaking up (over half its particles alone), particles "
+       "collapsing (4x the neighbours), pairing (a warning): stop the run naming the cause, only warn, or off",
+       {}, nullptr, regimeCheckNames},
       {"threads", G::kNumerics, &C::threads, "",
        "OpenMP threads: a count from 1 to 1024 (OMP_NUM_THREADS is obeyed too), or auto: start from the cores "
        "this process may use and the load, and keep the faster of that and fewer threads, timed during the run",

@@ -13,6 +13,7 @@
 #include "sph/io/vtp_io.hpp"
 #include "sph/model_registry.hpp"
 #include "sph/particle_sources.hpp"
+#include "sph/regime_check.hpp"
 #include "sph/run_signals.hpp"
 #include "sph/scene.hpp"
 #include "sph/thread_tuner.hpp"
@@ -411,6 +412,16 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   };
   Real nextOutput = byInterval ? outputTime(outputIndex(scene.time()) + 1) : std::numeric_limits<Real>::infinity();
 
+  // The regime check's sound speed: the EOS's at rho0 (the seed's p =
+  // k (rho - rho0): sqrt(k)); none for the polytropic toy stars.
+  Real soundSpeed = 0;
+  if (c.model == "seed_wcsph") soundSpeed = std::sqrt(c.k);
+  else if (c.eos != "polytropic")
+    soundSpeed = std::visit([&](const auto& e) { return e.soundSpeed(c.rho0); }, makeEos(c));
+  RegimeCheck regime(soundSpeed, c.spacing, scene.particles().fluidCount());
+  const bool regimeOn = c.regimeCheck != "off";
+  if (regimeOn) regime.start(measureRegime(scene.particles(), scene.neighbours(), soundSpeed, c.spacing));
+
   const bool terminal = isatty(STDERR_FILENO);
   const bool showLiveLine = c.progress && terminal;
   const double progressEvery = terminal ? 0.25 : 10.0;
@@ -421,6 +432,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   TimeStepStats dtStats;
   const long firstStep = scene.stepIndex();
   int status = kSuccess;
+  bool regimeWarned = false;
   auto saveRecord = [&] {
     record.simulatedTime = scene.time();
     record.step = scene.stepIndex();
@@ -462,6 +474,32 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         record.message = message;
         status = kBlewUp;
         break;
+      }
+      // Still physics? Every 10 steps (regime_check.hpp).
+      if (regimeOn && scene.stepIndex() % 10 == 0) {
+        const auto verdict = regime.judge(measureRegime(scene.particles(), scene.neighbours(), soundSpeed, c.spacing),
+                                          scene.lastTimeStep().dt, c.h);
+        if (!verdict.warning.empty()) {
+          if (showLiveLine) err << "\n";
+          err << "sph: warning: at step " << scene.stepIndex() << ", t = " << shortestDecimal(scene.time()) << " s: " << verdict.warning << "\n";
+        }
+        if (!verdict.stop.empty()) {
+          if (showLiveLine) err << "\n";
+          const std::string message = "the run left its regime at step " + std::to_string(scene.stepIndex()) +
+                                      ", t = " + shortestDecimal(scene.time()) + " s: " + verdict.stop;
+          if (c.regimeCheck == "stop") {
+            err << "sph: error: " << message << "\nsph: the outputs up to step " << output.lastStep()
+                << " (t = " << output.lastTime() << " s) are intact in " << output.seriesPath()
+                << " (regime_check = \"warn\" lets such a run go on)\n";
+            output.flushTimeSteps();
+            record.status = "blew_up";
+            record.message = message;
+            status = kBlewUp;
+            break;
+          }
+          if (!regimeWarned) err << "sph: warning: " << message << "\n";
+          regimeWarned = true;
+        }
       }
       // An adaptive dt that no longer lets the run end stops it, named.
       if (adaptive && !finished() && (c.endTime - scene.time()) / scene.lastTimeStep().dt > kMaxSteps) {

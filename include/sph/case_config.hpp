@@ -86,6 +86,9 @@ struct CaseConfig {
   bool frontProbe = false;         // the surge front's x
   Real probeInterval = 0;          // seconds of simulated time between samples; 0: every step
 
+  // regime check (sph/regime_check.hpp): stop | warn | off
+  std::string regimeCheck = "stop";
+
   // domain (walls)
   std::vector<Real> domainMin{0, 0};
   std::vector<Real> domainMax{1, 1};

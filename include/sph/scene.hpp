@@ -121,6 +121,7 @@ class Scene {
   Particles<D>& particles() { return P_; }
   const Model<D>& model() const { return model_; }
   const HashGrid<D>& grid() const { return grid_; }
+  const NeighbourList<D>& neighbours() const { return neighbours_; }
   Real time() const { return time_; }
   long stepIndex() const { return step_; }
   // dt and criterion of the last step (before the first: the fixed dt).
