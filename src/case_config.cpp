@@ -98,39 +98,7 @@ void validateCase(const CaseConfig& c) {
       throw CaseError("h = " + fmt(c.h) + " is out of range for this domain: the domain is " + fmt(extent) +
                       " m wide, more than " + fmt(kMaxCellsPerAxis) + " h (raise h or shrink the domain)");
   }
-  requireSize("block_min", c.blockMin, D, true);
-  requireSize("block_max", c.blockMax, D, true);
-  requireSize("disc_center", c.discCenter, D, true);
-  requireSize("velocity", c.velocity, D, true);
-  if (c.blockMin.empty() != c.blockMax.empty())
-    throw CaseError("block_min and block_max go together: give both or neither");
-  if (!c.blockMin.empty())
-    for (int d = 0; d < D; ++d)
-      if (!(c.blockMax[static_cast<std::size_t>(d)] > c.blockMin[static_cast<std::size_t>(d)]))
-        throw CaseError("block_max must exceed block_min in every dimension");
-  if (c.discCenter.empty() != (c.discRadius == 0))
-    throw CaseError("disc_center and disc_radius go together: give both or neither");
-  if (!c.discCenter.empty()) requirePositive("disc_radius", c.discRadius);
-  if ((!c.blockMin.empty() || !c.discCenter.empty())) requirePositive("spacing", c.spacing);
-  if (c.points.size() % static_cast<std::size_t>(D) != 0)
-    throw CaseError("points has " + std::to_string(c.points.size()) +
-                    " values: it needs a multiple of " + std::to_string(D) + " (x y" +
-                    (D == 3 ? " z" : "") + " per point)");
-  // Generated particle count, before anything is allocated: indices are
-  // 32-bit and memory is finite.
-  double count = static_cast<double>(c.points.size() / static_cast<std::size_t>(D));
-  const char* countKey = "points";
-  if (!c.blockMin.empty()) {
-    double block = 1;
-    for (int d = 0; d < D; ++d)
-      block *= std::round((c.blockMax[static_cast<std::size_t>(d)] - c.blockMin[static_cast<std::size_t>(d)]) / c.spacing);
-    count += block, countKey = "spacing";
-  }
-  if (!c.discCenter.empty()) count += std::pow(2 * std::floor(c.discRadius / c.spacing) + 1, D), countKey = "spacing";
-  for (long n : c.starParticles) count += static_cast<double>(n), countKey = "star_particles";
-  if (count > kMaxParticles)
-    throw CaseError(std::string(countKey) + " gives about " + fmt(count) + " particles: at most " +
-                    fmt(kMaxParticles) + " are allowed");
+  validateBodies(c);
 }
 
 int requestedThreads(const CaseConfig& c) {

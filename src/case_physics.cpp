@@ -43,9 +43,9 @@ void validateWallsAndDensity(const CaseConfig& c) {
       if (a < c.domainMin[d] || b > c.domainMax[d])
         throw CaseError("obstacle " + std::to_string(k / D + 1) + " reaches outside the domain [domain_min, domain_max]");
     }
-  if (c.hydrostaticStart && c.blockMax.empty())
-    throw CaseError("hydrostatic_start needs a fluid block (block_min/block_max): the top of the block is the "
-                    "free surface the hydrostatic pressure starts from");
+  if (c.hydrostaticStart && c.blockMax.empty() && c.discRadius.empty())
+    throw CaseError("hydrostatic_start needs a fluid block or disc (block_min/block_max, disc_center/disc_radius): "
+                    "the top of each body is the free surface its hydrostatic pressure starts from");
   if (particleWalls && c.boundary != "repulsive") {
     const int needed = wallLayersNeeded(c);
     if (c.wallLayers > 0 && c.wallLayers < needed && !c.wallLayersOverride)

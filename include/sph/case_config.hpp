@@ -95,9 +95,12 @@ struct CaseConfig {
 
   // initial particles: any combination of the generators below
   Real spacing = 0;                  // lattice spacing for block and disc
-  std::vector<Real> blockMin, blockMax;
-  std::vector<Real> discCenter;
-  Real discRadius = 0;
+  // Any number of bodies: D values per block corner, D per disc centre, one
+  // radius per disc; block_velocity / disc_velocity: D per body (empty: all
+  // move with `velocity`).
+  std::vector<Real> blockMin, blockMax, blockVelocity;
+  std::vector<Real> discCenter, discVelocity;
+  std::vector<Real> discRadius;
   std::vector<Real> points;          // x0 y0 [z0] x1 y1 [z1] ...
   std::vector<Real> velocity;        // initial velocity of generated particles
   std::string particleFile;          // .csv (x,y[,z][,vx,vy[,vz]]) or .vtp from sph
@@ -128,6 +131,10 @@ void validateCase(const CaseConfig& c);
 
 // The wall-particle and density keys (src/case_physics.cpp), part of validateCase.
 void validateWallsAndDensity(const CaseConfig& c);
+
+// The fluid bodies: blocks, discs, their velocities, overlaps and the
+// particle count (src/case_bodies.cpp), part of validateCase.
+void validateBodies(const CaseConfig& c);
 
 // The probe keys (src/case_probes.cpp), part of validateCase.
 void validateProbes(const CaseConfig& c);

@@ -77,6 +77,7 @@ Scene<D> makeScene(const CaseConfig& c, InitialState<D> init,
   StateCheck<D> check(lo, hi);
   check.wallParticles = c.walls && c.boundary != "reflecting";
   if (check.wallParticles) check.tolerance = c.spacing / 2;
+  check.openTop = check.wallParticles && !c.lid;
   for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D)
     check.obstacles.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
                                toVec<D>({c.obstacleMax.begin() + k, c.obstacleMax.begin() + k + D})});
