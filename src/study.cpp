@@ -194,9 +194,10 @@ Study parseStudy(const std::string& text, const std::string& name, const fs::pat
       return n;
     };
     if (startsWith(e.key, "case_")) {
-      if (!e.array || e.values.size() != 2)
-        throw CaseError(where + ": " + e.key + " must be [\"CASE_FILE\", \"OBSERVABLE\"]");
-      StudyCase c{suffix("case_"), fs::path(e.values[0]), e.values[1], {}};
+      if (!e.array || e.values.size() < 2 || e.values.size() > 3)
+        throw CaseError(where + ": " + e.key + " must be [\"CASE_FILE\", \"OBSERVABLE\"] or [\"CASE_FILE\", "
+                        "\"OBSERVABLE\", \"METRIC\"]");
+      StudyCase c{suffix("case_"), fs::path(e.values[0]), e.values[1], e.values.size() == 3 ? e.values[2] : "", {}};
       if (c.caseFile.is_relative()) c.caseFile = dir / c.caseFile;
       std::error_code ec;
       if (!fs::is_regular_file(c.caseFile, ec))
@@ -448,7 +449,7 @@ int runStudy(const Study& s, const StudyOptions& o, std::ostream& out, std::ostr
   j["cases"] = json::array();
   for (const StudyCase& c : s.cases)
     j["cases"].push_back({{"name", c.name}, {"case_file", c.caseFile.string()}, {"observable", c.observable},
-                          {"overrides", overridesJson(c.overrides)}});
+                          {"metric", c.metric}, {"overrides", overridesJson(c.overrides)}});
   j["methods"] = json::array();
   for (const StudyVariant& m : s.methods) j["methods"].push_back({{"name", m.name}, {"overrides", overridesJson(m.overrides)}});
   j["resolutions"] = json::array();

@@ -146,7 +146,8 @@ def plot_case(ax, case, rows, methods, tolerances, recommended, cost):
     front = sorted((r for r in ok if r["pareto"]), key=lambda r: r[cost])
     if front:
         ax.step([r[cost] for r in front], [r["error"] for r in front], where="post", color="black",
-                linestyle="--", linewidth=1, label="Pareto front")
+                linestyle="--", linewidth=1, marker="s", markersize=11, markerfacecolor="none",
+                label="Pareto front")
     for t in tolerances:
         ax.axhline(t, color="grey", linestyle=":", linewidth=1.2)
         ax.annotate(f"tolerance {t:g}", (0.01, t), xycoords=("axes fraction", "data"), ha="left", va="bottom",
@@ -184,6 +185,8 @@ def main():
     cost = {"wall": "wall_s", "cpu": "cpu_s"}[cost_arg or study.get("cost", "wall")]
     tolerances = study["tolerances"]
     observable = {c["name"]: c["observable"] for c in study["cases"]}
+    # The charted metric of each case: the study file's third element, else the observable's first.
+    case_metric = {c["name"]: c.get("metric") or OBSERVABLES[c["observable"]][1] for c in study["cases"]}
     varied = []
     for v in study["methods"] + study["resolutions"]:
         for k in v["overrides"]:
@@ -195,7 +198,7 @@ def main():
     for run in study["runs"]:
         folder = os.path.join(out, run["folder"])
         status, record, errors = measure(folder, observable[run["case"]])
-        metric = OBSERVABLES[observable[run["case"]]][1]
+        metric = case_metric[run["case"]]
         row = {"case": run["case"], "method": run["method"], "resolution": run["resolution"], "status": status}
         case = record["case"] if record else {}
         for k in varied:
@@ -203,6 +206,9 @@ def main():
         row["N"] = record["summary"]["fluid_particles"] if record else ""
         row["dx"] = case.get("spacing", "")
         row["metric"] = metric
+        if errors and metric not in errors:
+            raise SystemExit(f"study.py: case {run['case']}: no error metric '{metric}': "
+                             f"the {observable[run['case']]} observable has {', '.join(errors)}")
         row["error"] = errors.get(metric, float("nan"))
         for k, v in errors.items():
             if k not in error_keys:
@@ -228,7 +234,7 @@ def main():
             rec[t] = min(meets, key=lambda r: r[cost]) if meets else None
         recommended_rows[case] = rec
         results["cases"][case] = {
-            "metric": OBSERVABLES[observable[case]][1],
+            "metric": case_metric[case],
             "pareto": [r["folder"] for r in ok if r["pareto"]],
             "recommendations": {f"{t:g}": (rec[t]["folder"] if rec[t] else None) for t in tolerances},
         }
@@ -267,7 +273,8 @@ def main():
     for case in cases:
         obs = observable[case]
         mine = [r for r in rows if r["case"] == case]
-        lines += [f"## {case}", "", f"Error: `{OBSERVABLES[obs][1]}`, {OBSERVABLES[obs][2]}.", "",
+        about = OBSERVABLES[obs][2] if case_metric[case] == OBSERVABLES[obs][1] else "see validation/observables.py"
+        lines += [f"## {case}", "", f"Error: `{case_metric[case]}`, {about}.", "",
                   f"![{case}]({case}.png)", ""]
         for t in tolerances:
             r = recommended_rows[case][t]

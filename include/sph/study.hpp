@@ -9,7 +9,8 @@
 //
 //   case_NAME       = ["CASE_FILE", "OBSERVABLE"]   a reference case; CASE_FILE is relative
 //                                                   to the study file; OBSERVABLE: dam_break
-//                                                   or hydrostatic (study.py measures them)
+//                                                   or hydrostatic (study.py measures them);
+//                                                   a third element names the error metric
 //   method_NAME     = ["key = value", ...]          a method: overrides on every case
 //   resolution_NAME = ["key = value", ...]          a resolution: overrides too
 //   overrides       = ["key = value", ...]          for every run (e.g. a shorter end_time)
@@ -45,6 +46,7 @@ struct StudyCase {
   std::string name;
   std::filesystem::path caseFile;  // as given, resolved against the study file's folder
   std::string observable;
+  std::string metric;                  // "" -> the observable's first (study.py checks the name)
   std::vector<KeyOverride> overrides;  // overrides_NAME: for this case's runs
 };
 
