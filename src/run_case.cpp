@@ -21,6 +21,7 @@
 #include "sph/version.hpp"
 
 #include <omp.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -443,6 +444,13 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       if (std::find(record.threadsUsed.begin(), record.threadsUsed.end(), t) == record.threadsUsed.end())
         record.threadsUsed.push_back(t);
     for (const auto& [t, seconds] : tuner.secondsWith()) record.threadSeconds[t] += seconds;
+    // CPU time and peak memory of this process (a resume adds its own).
+    rusage usage{};
+    if (::getrusage(RUSAGE_SELF, &usage) == 0) {
+      auto seconds = [](const timeval& tv) { return static_cast<double>(tv.tv_sec) + 1e-6 * static_cast<double>(tv.tv_usec); };
+      record.cpuSeconds = previous.cpuSeconds + seconds(usage.ru_utime) + seconds(usage.ru_stime);
+      record.peakMemoryBytes = std::max(previous.peakMemoryBytes, 1024.0 * static_cast<double>(usage.ru_maxrss));
+    }
     record.addFile("run.json");
     record.addFile("run.case");
     writeRunRecord(dir, record);
