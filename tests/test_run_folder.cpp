@@ -337,19 +337,30 @@ BOOST_AUTO_TEST_CASE(sigterm_exits_143) { stopRunWith(SIGTERM, "SIGTERM", test::
 // into one), while the run still finishes its step: 20 000 particles, so
 // that the step and the final snapshot take a while.
 BOOST_AUTO_TEST_CASE(second_sigint_stops_at_once) {
-  const auto dir = test::scratchDir("sigint2");
-  const fs::path out = dir / "run", pvd = out / "dam_break_seed.pvd";
-  BackgroundRun run({"run", test::caseFile("dam_break_seed"), "--output", out.string(), "--end_time", "5", "--spacing",
-                     "0.0025", "--h", "0.0033", "--output_every", "100000", "--threads", "1"},
-                    dir / "log.txt");
-  BOOST_TEST_REQUIRE(run.waitUntil([&] { return snapshotsListed(pvd) >= 1; }), run.output());
-  run.signal(SIGINT);
-  BOOST_TEST(run.waitUntil([&] { return !run.pending(SIGINT); }, 10));
-  run.signal(SIGINT);
-  const int status = run.wait();
-  const std::string log = run.output();
-  BOOST_TEST(WIFSIGNALED(status), log);
-  if (WIFSIGNALED(status)) BOOST_TEST(WTERMSIG(status) == SIGINT);
+  // On a loaded machine the first stop may complete (snapshot, summary,
+  // exit 130) before the second signal arrives; that run is checked as a
+  // clean stop and the race is tried again, up to five times.
+  fs::path dir, out, pvd;
+  int status = 0;
+  std::string log;
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    dir = test::scratchDir("sigint2_" + std::to_string(attempt));
+    out = dir / "run", pvd = out / "dam_break_seed.pvd";
+    BackgroundRun run({"run", test::caseFile("dam_break_seed"), "--output", out.string(), "--end_time", "5",
+                       "--spacing", "0.0025", "--h", "0.0033", "--output_every", "100000", "--threads", "1"},
+                      dir / "log.txt");
+    BOOST_TEST_REQUIRE(run.waitUntil([&] { return snapshotsListed(pvd) >= 1; }), run.output());
+    run.signal(SIGINT);
+    BOOST_TEST(run.waitUntil([&] { return !run.pending(SIGINT); }, 10));
+    run.signal(SIGINT);
+    status = run.wait();
+    log = run.output();
+    if (WIFSIGNALED(status)) break;
+    BOOST_TEST(WEXITSTATUS(status) == 130, log);  // the first stop won the race: a clean stop
+    BOOST_TEST(log.find("stopped at step") != std::string::npos, log);
+  }
+  BOOST_TEST_REQUIRE(WIFSIGNALED(status), log);
+  BOOST_TEST(WTERMSIG(status) == SIGINT);
   BOOST_TEST(log.find("stopped at step") == std::string::npos, log);
   const auto series = test::readPvd(pvd);
   BOOST_TEST(readJson(out / "run.json")["status"] == "running");
