@@ -85,6 +85,10 @@ const std::vector<KeySpec>& caseKeys() {
        "Upper corner of the domain box (D values; more than 2h above domain_min)", coordinate(), nullptr, nullptr},
       {"walls", G::kScene, &C::walls, "", "The domain box has walls (--no-walls: none); boundary says how they act", {},
        nullptr, nullptr},
+      {"periodic", G::kScene, &C::periodic, "",
+       "Periodic axes of the domain box, as letters: \"x\", \"xy\", \"xz\", \"xyz\", ... (no walls on those faces; "
+       "each periodic extent at least 2 kernel supports)",
+       {}, "none", nullptr},
       {"block_min", G::kScene, &C::blockMin, "m",
        "Lattice blocks of fluid: lower corners, D values per block (any number of blocks)", coordinate(), "none",
        nullptr},

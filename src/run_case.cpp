@@ -298,7 +298,9 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   for (const std::string& note : unusedKeyNotes(c)) err << "sph: warning: " << escapeControl(note) << "\n";
 
   const std::size_t n = init.particles.size();
-  const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
+  Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
+  for (int d = 0; d < D; ++d)  // periodic faces have no wall
+    if ((periodicAxes(c) >> d) & 1u) lo[d] = -std::numeric_limits<Real>::infinity(), hi[d] = -lo[d];
   std::size_t nearWall = 0;
   if (c.walls && c.boundary == "reflecting" && !resuming)
     for (const auto& x : init.particles.x)

@@ -38,6 +38,7 @@ struct CaseConfig {
   Real g = 9.81;
   Real restitution = 0.5;
   bool walls = true;        // the domain box has walls
+  std::string periodic;     // periodic axes of the domain box: "x", "xy", "xz", ... ("" or "none": none)
 
   // walls and density (model wcsph)
   std::string boundary = "reflecting";  // reflecting | dummy | dynamic | repulsive
@@ -148,6 +149,9 @@ int requestedThreads(const CaseConfig& c);
 std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& c);
 // The warnings for the keys among those that the case sets.
 std::vector<std::string> unusedKeyNotes(const CaseConfig& c);
+
+// The periodic axes of a validated case as bits (bit a: axis a).
+unsigned periodicAxes(const CaseConfig& c);
 
 // The first D values of a validated vector key as a Vec<D>.
 template <int D>

@@ -13,12 +13,14 @@
 //                      validation/observables.py), 0 when none is there.
 //   front:             the furthest fluid particle along +x plus dx/2.
 //
+// In a periodic box the distance to a particle is its nearest image.
 // The sums run over every fluid particle (O(N) per probe and sample): no
 // neighbour search is needed, and a case without probes does nothing.
 #pragma once
 
 #include "sph/kernels/kernels.hpp"
 #include "sph/particles.hpp"
+#include "sph/periodic_box.hpp"
 
 #include <cmath>
 #include <limits>
@@ -36,14 +38,15 @@ struct ProbeValues {
 };
 
 template <int D>
-ProbeValues<D> interpolateAt(const Particles<D>& P, const Kernel<D>& kernel, const Vec<D>& x, Real dryWeight) {
+ProbeValues<D> interpolateAt(const Particles<D>& P, const Kernel<D>& kernel, const Vec<D>& x, Real dryWeight,
+                             const PeriodicBox<D>& box = {}) {
   return std::visit(
       [&](const auto& W) {
         ProbeValues<D> out;
         const Real support = W.support(), support2 = support * support;
         Real weight = 0;
         for (std::size_t j = 0; j < P.fluidCount(); ++j) {
-          const Vec<D> r = x - P.x[j];
+          const Vec<D> r = box.minimumImage(Vec<D>(x - P.x[j]));
           const Real r2 = r.squaredNorm();
           if (r2 >= support2) continue;
           const Real w = P.m[j] / P.rho[j] * W.W(std::sqrt(r2));

@@ -41,6 +41,7 @@ template <int D>
 RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbours, Real cRef, Real dx) {
   const std::size_t nFluid = P.fluidCount();
   const Real close2 = dx > 0 ? 0.04 * dx * dx : 0;
+  return neighbours.withSeparation([&](const auto& sep) {
   Real v2 = 0;
   std::size_t isolated = 0, paired = 0, pairs = 0;
 #pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize) \
@@ -52,7 +53,7 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
     const Vec<D> xi = P.x[i];
     neighbours.forEach(i, [&](std::uint32_t j) {
       ++count;
-      close |= (P.x[j] - xi).squaredNorm() < close2;
+      close |= sep(xi, P.x[j]).squaredNorm() < close2;
     });
     pairs += count;
     isolated += count == 0;
@@ -68,6 +69,7 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
     s.pairedFraction = static_cast<Real>(paired) / n;
   }
   return s;
+  });
 }
 
 class RegimeCheck {

@@ -57,6 +57,13 @@ class Scene {
     P_.allocate(model_.needs() | integratorNeeds);
   }
 
+  // Periodic axes of the domain box; call before initialise() or resume().
+  void setPeriodic(const PeriodicBox<D>& box) {
+    periodic_ = box;
+    grid_.setPeriodic(box);
+  }
+  const PeriodicBox<D>& periodicBox() const { return periodic_; }
+
   // Sort, optionally scale the masses to rho0, and evaluate the model at the
   // initial state. Returns a failure if the initial state is not finite.
   std::optional<StateFailure> initialise(bool scaleMass) {
@@ -149,6 +156,11 @@ class Scene {
   }
 
   void sort() {
+    if (periodic_.any()) {
+      const std::size_t n = P_.size();
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
+      for (std::size_t i = 0; i < n; ++i) periodic_.wrap(P_.x[i]);
+    }
     grid_.build(P_.x, P_.fluidCount());
     P_.permute(grid_.order());
     neighbours_.build(grid_, P_.x, model_.support(), P_.fluidCount());
@@ -198,6 +210,7 @@ class Scene {
   std::optional<DampedReflectingWalls<D>> walls_;
   StateCheck<D> check_;
   TimeStepControl timeStep_;
+  PeriodicBox<D> periodic_;
   HashGrid<D> grid_;
   NeighbourList<D> neighbours_;
   Real startTime_;

@@ -36,6 +36,13 @@ class ProbeFiles {
  public:
   ProbeFiles(const CaseConfig& c, const Kernel<D>& kernel)
       : kernel_(kernel), dx_(c.spacing), interval_(c.probeInterval), heights_(c.heightProbes), front_(c.frontProbe) {
+    if (c.domainMin.size() == D && c.domainMax.size() == D) {
+      for (int d = 0; d < D; ++d) {
+        box_.lo[d] = c.domainMin[static_cast<std::size_t>(d)];
+        box_.length[d] = c.domainMax[static_cast<std::size_t>(d)] - c.domainMin[static_cast<std::size_t>(d)];
+      }
+      box_.axes = periodicAxes(c);
+    }
     for (std::size_t k = 0; k + D <= c.probePoints.size(); k += D) {
       Vec<D> x;
       for (int d = 0; d < D; ++d) x[d] = c.probePoints[k + static_cast<std::size_t>(d)];
@@ -75,7 +82,7 @@ class ProbeFiles {
     if (!points_.empty()) {
       pointText_ += timeText;
       for (const auto& x : points_) {
-        const ProbeValues<D> v = interpolateAt(P, kernel_, x, kDryWeight);
+        const ProbeValues<D> v = interpolateAt(P, kernel_, x, kDryWeight, box_);
         pointText_ += "," + value(v.wet, v.pressure) + "," + value(v.wet, v.density);
         for (int d = 0; d < D; ++d) pointText_ += "," + value(v.wet, v.velocity[d]);
       }
@@ -126,6 +133,7 @@ class ProbeFiles {
   static std::string value(bool wet, Real x) { return wet ? number(x) : "nan"; }
 
   Kernel<D> kernel_;
+  PeriodicBox<D> box_;  // minimum image for the point probes along periodic axes
   Real dx_, interval_;
   std::vector<Vec<D>> points_;
   std::vector<std::string> names_;
