@@ -23,6 +23,7 @@ enum : unsigned {
   kAdamiWalls = 1u << 13,
   kDynamicWalls = 1u << 14,
   kRepulsiveWalls = 1u << 15,
+  kMorrisViscosity = 1u << 16,
 };
 
 }  // namespace sph::term_bits
