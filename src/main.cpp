@@ -9,6 +9,7 @@
 #include "sph/case_keys.hpp"
 #include "sph/io/run_folder.hpp"
 #include "sph/run_case.hpp"
+#include "sph/case_check.hpp"
 #include "sph/study.hpp"
 
 #include <CLI/CLI.hpp>
@@ -26,6 +27,7 @@ namespace {
 const char* kTopHelp =
     "sph: Smoothed-Particle Hydrodynamics for ParaView workflows.\n"
     "Usage: sph run CASE_FILE [--output DIR] [--KEY VALUE ...]\n"
+    "       sph check CASE_FILE [--KEY VALUE ...]   (what the case implies; nothing is run or written)\n"
     "       sph study STUDY_FILE [--output DIR] [--jobs N] [--tolerance X]\n"
     "Every key of a case file is also a flag that overrides it.";
 
@@ -180,6 +182,34 @@ std::string resumeFolder(int argc, char** argv) {
   return "";
 }
 
+// Parses `sph SUB CASE_FILE [--KEY VALUE ...]` (args without "sph") into
+// c: the case file is the App's config file, every key a flag. Returns -1
+// when c is ready, else the exit code (help printed, or an error).
+int parseCaseCommand(const std::string& title, const std::string& name, std::vector<std::string> args,
+                     sph::CaseConfig& c) {
+  std::vector<char*> argp;
+  for (auto& a : args) argp.push_back(a.data());
+  CLI::App app(title, name);
+  app.set_config("case_file", "", "Case file to run (see cases/)", true);
+  app.allow_config_extras(CLI::config_extras_mode::error);
+  const auto format = std::make_shared<CaseFileFormat>();
+  app.config_formatter(format);
+  declareKeys(app, c);
+  try {
+    app.parse(static_cast<int>(argp.size()), argp.data());
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return fail(explain(e, app, *format));
+  } catch (const sph::CaseFileError& e) {
+    const std::string line = e.line() ? " line " + std::to_string(e.line()) : "";
+    return fail("case file " + app.get_config_ptr()->as<std::string>() + line + ": " + e.what());
+  }
+  c.caseFile = app.get_config_ptr()->as<std::string>();
+  c.given = givenKeys(app);
+  return -1;
+}
+
 // `sph run ...` is parsed by an App of its own: CLI11 reads config files for
 // the top-level App only, and the case file is that App's config file.
 // `sph run --resume DIR` takes DIR/run.case, the resolved case of that run,
@@ -194,26 +224,10 @@ int runCommand(int argc, char** argv) {
       return fail("resume: " + resume + " holds no run to resume (no run.json)");
     args.insert(args.begin() + 1, (std::filesystem::path(resume) / "run.case").string());
   }
-  std::vector<char*> argp;
-  for (auto& a : args) argp.push_back(a.data());
-  CLI::App run("Run a case file. Every key of the case file is also a flag that overrides it.",
-               "sph run");
-  run.set_config("case_file", "", "Case file to run (see cases/)", true);
-  run.allow_config_extras(CLI::config_extras_mode::error);
-  const auto format = std::make_shared<CaseFileFormat>();
-  run.config_formatter(format);
-  declareKeys(run, c);
-  try {
-    run.parse(static_cast<int>(argp.size()), argp.data());
-  } catch (const CLI::Success& e) {
-    return run.exit(e);
-  } catch (const CLI::ParseError& e) {
-    return fail(explain(e, run, *format));
-  } catch (const sph::CaseFileError& e) {
-    const std::string line = e.line() ? " line " + std::to_string(e.line()) : "";
-    return fail("case file " + run.get_config_ptr()->as<std::string>() + line + ": " + e.what());
-  }
-  c.caseFile = run.get_config_ptr()->as<std::string>();
+  const int parsed = parseCaseCommand("Run a case file. Every key of the case file is also a flag that overrides it.",
+                                      "sph run", args, c);
+  if (parsed >= 0) return parsed;
+  if (resume.empty() && c.given.count("name") == 0) c.name = sph::defaultRunName(c.caseFile);
   const std::set<std::string> flags = commandLineKeys(argc, argv);
   if (!resume.empty()) {
     const std::string refusal = resumeRefusal(flags, resume);
@@ -225,7 +239,7 @@ int runCommand(int argc, char** argv) {
     // The run's own record says which keys its case set; flags add to them.
     try {
       const sph::RunRecord record = sph::readRunRecord(resume);
-      c.given.insert(record.given.begin(), record.given.end());
+      c.given = std::set<std::string>(record.given.begin(), record.given.end());
       c.caseFile = record.caseFile;
     } catch (const std::exception& e) {
       return fail(std::string("resume: ") + e.what());
@@ -234,14 +248,26 @@ int runCommand(int argc, char** argv) {
     c.given.erase("resume");
     c.output = resume;
     c.resume = resume;
-  } else {
-    c.given = givenKeys(run);
-    if (run.count("--name") == 0) c.name = sph::defaultRunName(c.caseFile);
   }
   preferCommandLineOutputKey(c, flags);
   if (c.output.empty()) c.output = (std::filesystem::path("runs") / c.name).string();
   if (c.dimension == 3) return sph::runCase<3>(c, std::cout, std::cerr);
   if (c.dimension == 2) return sph::runCase<2>(c, std::cout, std::cerr);
+  return fail("dimension = " + std::to_string(c.dimension) + " is out of range: it must be 2 or 3");
+}
+
+// `sph check CASE_FILE [--KEY VALUE ...]`: what the case implies, without
+// running it (sph/case_check.hpp).
+int checkCommand(int argc, char** argv) {
+  sph::CaseConfig c;
+  const int parsed = parseCaseCommand("Check a case file: what it implies (particles, h/dx, neighbours, Mach number, dt "
+                                      "against its limits, wall layers, memory, a time estimate) and where it lies "
+                                      "outside a method's measured stable range. Nothing is written.",
+                                      "sph check", std::vector<std::string>(argv, argv + argc), c);
+  if (parsed >= 0) return parsed;
+  if (c.given.count("name") == 0) c.name = sph::defaultRunName(c.caseFile);
+  if (c.dimension == 3) return sph::checkCase<3>(c, std::cout, std::cerr);
+  if (c.dimension == 2) return sph::checkCase<2>(c, std::cout, std::cerr);
   return fail("dimension = " + std::to_string(c.dimension) + " is out of range: it must be 2 or 3");
 }
 
@@ -302,7 +328,7 @@ int missingSubcommand(int argc, char** argv) {
     }
     return fail("missing subcommand: did you mean '" + command + "'?");
   }
-  return fail("unknown subcommand '" + first + "': the subcommands are 'run' and 'study': " +
+  return fail("unknown subcommand '" + first + "': the subcommands are 'run', 'check' and 'study': " +
               "sph run CASE_FILE [--output DIR] [--KEY VALUE ...] ('sph --help' lists the keys)");
 }
 
@@ -311,6 +337,7 @@ int missingSubcommand(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "run") return runCommand(argc - 1, argv + 1);
   if (argc >= 2 && std::string(argv[1]) == "study") return studyCommand(argc - 1, argv + 1);
+  if (argc >= 2 && std::string(argv[1]) == "check") return checkCommand(argc - 1, argv + 1);
   if (argc >= 2 && argv[1][0] != '-') return missingSubcommand(argc, argv);
   CLI::App app(kTopHelp, "sph");
   app.set_version_flag("--version", std::string("sph ") + SPH_VERSION);

@@ -1,0 +1,171 @@
+// sph check: what a case implies before it runs (case_check.hpp).
+//
+// The stable ranges it warns about were measured with sph (README, "Where
+// the seed scheme works" and the stability notes of issue 9):
+//   acoustic   leap-frog with continuity density is unstable from c0 dt / h
+//              = 1.87 (cubic spline) and 1.81 (Wendland C2) at h/dx 1.3
+//              (tests/reference/acoustic_cfl_limits.csv); the usual aim is
+//              c0 dt / h <= 0.25, and past half the limit waves grow;
+//   pairing    the cubic spline pairs particles from h/dx 1.3 (39% of them
+//              at 1.3, 52-70% from 1.5); Wendland C2 stays clean to 2.0;
+//   Mach       density varies as Ma^2: Ma <= 0.1 keeps it within 1%;
+//   explicit Euler gains energy every step whatever dt.
+#include "sph/case_check.hpp"
+
+#include "sph/case_file.hpp"
+#include "sph/model_registry.hpp"
+#include "sph/run_case.hpp"
+#include "sph/time_step.hpp"
+#include "sph/wall_particles.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <ostream>
+#include <string>
+
+namespace sph {
+namespace {
+
+std::string fmt(Real x, int digits = 3) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.*g", digits, x);
+  return s;
+}
+
+}  // namespace
+
+template <int D>
+int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
+  CaseConfig c;
+  InitialState<D> init;
+  try {
+    validateCase(given);
+    c = withDefaults(given);
+    init = buildInitialState<D>(c);
+  } catch (const CaseError& e) {
+    err << "sph: error: " << escapeControl(e.what()) << "\n";
+    return kBadInput;
+  } catch (const std::runtime_error& e) {
+    err << "sph: error: " << escapeControl(e.what()) << "\n";
+    return kBadInput;
+  }
+  for (const std::string& note : unusedKeyNotes(c)) err << "sph: warning: " << escapeControl(note) << "\n";
+  const bool scale = !init.massesGiven;
+  Scene<D> scene = makeScene<D>(c, std::move(init));
+  if (const auto failure = scene.initialise(scale)) {
+    err << "sph: error: the initial state fails the state check: " << escapeControl(failure->detail) << "\n";
+    return kBadInput;
+  }
+  int warnings = 0;
+  auto warn = [&](const std::string& s) {
+    out << "  warning: " << s << "\n";
+    ++warnings;
+  };
+  const Particles<D>& P = scene.particles();
+  const Model<D>& model = scene.model();
+  const std::size_t nFluid = P.fluidCount();
+  const Real h = model.smoothingLength(), dx = c.spacing;
+  Real rhoMin = std::numeric_limits<Real>::infinity(), rhoMax = 0, pMin = rhoMin, pMax = -rhoMin, v2 = 0;
+  Real yMin = rhoMin, yMax = -rhoMin;
+  for (std::size_t i = 0; i < nFluid; ++i) {
+    rhoMin = std::min(rhoMin, P.rho[i]);
+    rhoMax = std::max(rhoMax, P.rho[i]);
+    pMin = std::min(pMin, P.p[i]);
+    pMax = std::max(pMax, P.p[i]);
+    v2 = std::max(v2, P.v[i].squaredNorm());
+    yMin = std::min(yMin, P.x[i][D - 1]);
+    yMax = std::max(yMax, P.x[i][D - 1]);
+  }
+  out << "sph check: " << c.name << "  (model " << c.model << ", " << D << "D)\n";
+  out << "  particles        " << P.size() << " (" << nFluid << " fluid, " << P.size() - nFluid << " wall)\n";
+  if (dx > 0)
+    out << "  h / dx           " << fmt(h / dx) << "  (h = " << fmt(h) << " m, dx = " << fmt(dx) << " m)\n";
+  out << "  neighbours       " << fmt(scene.meanNeighbours()) << " per particle (mean at the start)\n";
+  out << "  density          " << fmt(rhoMin, 6) << " .. " << fmt(rhoMax, 6) << "  (rho0 = " << fmt(c.rho0, 6) << ")\n";
+  out << "  pressure         " << fmt(pMin) << " .. " << fmt(pMax) << (D == 2 ? " N/m" : " Pa") << "\n";
+
+  // The speed the case can reach: its initial velocities, or a fall over
+  // the fluid's height (sqrt(2 g H)).
+  const Real g = gravityVector<D>(c).norm();
+  const Real H = nFluid ? yMax - yMin + dx : 0;
+  const Real vExpected = std::max(std::sqrt(v2), std::sqrt(2 * g * H));
+  const Real c0 = model.maxSoundSpeed(c.rho0, c.rho0);
+  if (c0 > 0 && vExpected > 0) {
+    const Real mach = vExpected / c0;
+    out << "  sound speed      c0 = " << fmt(c0) << " m/s; expected speed " << fmt(vExpected)
+        << " m/s (initial and sqrt(2 g H), H = " << fmt(H) << " m): Mach " << fmt(mach) << "\n";
+    if (mach > 0.1)
+      warn("Mach " + fmt(mach) + " > 0.1: the density will vary by ~" + fmt(100 * mach * mach) +
+           "% (Ma^2); raise c0 (eos tait) or k to at least " + fmt(10 * vExpected) + " m/s");
+  }
+
+  // dt against the limits (time_step.hpp gives the adaptive ones).
+  const Real dt = c.dt;
+  out << "  time step        dt = " << fmt(dt) << " s" << (c.cfl > 0 ? " (largest; adaptive, cfl " + fmt(c.cfl) + ")" : " (fixed)")
+      << "\n";
+  if (c0 > 0) {
+    const Real courant = c0 * dt / h;
+    const bool continuity = c.density == "continuity";
+    const Real limit = c.kernel == "wendland_c2" ? (continuity ? 1.81 : 2.33) : (continuity ? 1.87 : 2.46);
+    out << "    acoustic       c0 dt / h = " << fmt(courant) << " (aim <= 0.25; leap-frog measured unstable from ~"
+        << fmt(limit) << ")\n";
+    if (c.cfl == 0 && courant > 0.5 * limit)
+      warn("c0 dt / h = " + fmt(courant) + " is past half the measured acoustic limit " + fmt(limit) +
+           ": lower dt to " + fmt(0.25 * h / c0) + " s");
+  }
+  const Real nu = model.kinematicViscosity();
+  if (nu > 0) {
+    const Real viscous = 0.125 * h * h / nu;
+    out << "    viscous        dt / (0.125 h^2 / nu) = " << fmt(dt / viscous) << "\n";
+    if (c.cfl == 0 && dt > viscous) warn("dt is " + fmt(dt / viscous) + "x the viscous limit " + fmt(viscous) + " s");
+  }
+  if (g > 0) {
+    const Real force = 0.25 * std::sqrt(h / g);
+    out << "    body force     dt / (0.25 sqrt(h / g)) = " << fmt(dt / force) << "\n";
+    if (c.cfl == 0 && dt > force) warn("dt is " + fmt(dt / force) + "x the body-force limit " + fmt(force) + " s");
+  }
+  if (c.integrator == "euler") warn("integrator euler (explicit Euler) gains energy every step whatever dt: use leap_frog");
+
+  // Walls and kernels.
+  if (c.walls && (c.boundary == "dummy" || c.boundary == "dynamic")) {
+    const long needed = wallLayersNeeded(c);
+    const long layers = c.wallLayers > 0 ? c.wallLayers : needed;
+    out << "  wall layers      " << layers << " (the support needs " << needed << ")\n";
+    if (layers < needed) warn("fewer wall layers than the support needs: particles near a wall see a gap and leak");
+  }
+  if (dx > 0 && c.model == "wcsph" && c.kernel == "cubic_spline" && h / dx >= 1.3)
+    warn("cubic spline at h/dx " + fmt(h / dx) + ": it pairs particles from h/dx 1.3 (measured: 39% paired at 1.3, " +
+         "52-70% from 1.5); wendland_c2 stays clean to 2.0");
+
+  out << "  memory           " << fmt(static_cast<Real>(scene.bytesAllocated()) / (1 << 20)) << " MiB\n";
+  // A short timed sample on one thread (a run's threads = auto may do
+  // better): one warm-up step, then 20 timed ones.
+  omp_set_num_threads(1);
+  const int sample = 20;
+  if (scene.time() < c.endTime) (void)scene.step();
+  const Real start = scene.time();
+  const auto t0 = std::chrono::steady_clock::now();
+  int taken = 0;
+  for (; taken < sample && scene.time() < c.endTime; ++taken)
+    if (scene.step()) break;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (taken > 0) {
+    const Real perStep = seconds / taken;
+    const Real stepDt = scene.time() > start ? (scene.time() - start) / taken : dt;
+    const Real steps = std::ceil((c.endTime - start) / stepDt);
+    out << "  time estimate    " << fmt(perStep * 1e3) << " ms per step x " << fmt(steps) << " steps = "
+        << fmt(perStep * steps) << " s on 1 thread (from " << taken << " timed steps, no output)\n";
+  }
+  out << "  " << warnings << (warnings == 1 ? " warning" : " warnings") << "\n";
+  return kSuccess;
+}
+
+template int checkCase<2>(const CaseConfig&, std::ostream&, std::ostream&);
+template int checkCase<3>(const CaseConfig&, std::ostream&, std::ostream&);
+
+}  // namespace sph

@@ -1,0 +1,65 @@
+// `sph check CASE [--KEY VALUE ...]` (case_check.hpp): it states what the
+// case implies, warns where the case lies outside a method's measured
+// stable range, writes nothing, exits 0 with warnings and 2 on bad input.
+#include "test_support.hpp"
+
+#include <boost/test/unit_test.hpp>
+
+#include <filesystem>
+#include <string>
+
+using namespace sph;
+
+namespace {
+
+std::string shipped(const std::string& name) { return std::string(SPH_SOURCE_DIR) + "/cases/" + name; }
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(check)
+
+// The shipped dam break is within every range: its figures, no warning.
+BOOST_AUTO_TEST_CASE(a_sound_case_gets_its_figures_and_no_warning) {
+  const auto dir = test::scratchDir("check_sound");
+  const test::Result r = test::runSph({"check", shipped("dam_break_mm.case"), "--output", (dir / "out").string()});
+  BOOST_TEST_MESSAGE(r.output);
+  BOOST_TEST(r.exitCode == 0);
+  for (const char* line : {"particles        2468 (1250 fluid, 1218 wall)", "h / dx           1.5",
+                           "Mach 0.0712", "c0 dt / h = 0.147", "wall layers      3 (the support needs 3)",
+                           "time estimate", "0 warnings"})
+    BOOST_TEST(r.output.find(line) != std::string::npos, "missing: " << line);
+  BOOST_TEST(!std::filesystem::exists(dir / "out"));  // nothing written
+}
+
+// Each concern the check knows, provoked by a flag: a low c0 (Mach 0.16),
+// dt past half the acoustic limit, explicit Euler, the cubic spline at
+// h/dx 1.5 and one wall layer too few.
+BOOST_AUTO_TEST_CASE(each_concern_is_warned_about) {
+  const test::Result r = test::runSph({"check", shipped("dam_break_mm.case"), "--c0", "20", "--dt", "8e-4",
+                                       "--integrator", "euler", "--kernel", "cubic_spline", "--wall_layers", "2",
+                                       "--wall_layers_override"});
+  BOOST_TEST_MESSAGE(r.output);
+  BOOST_TEST(r.exitCode == 0);
+  BOOST_TEST(count(r.output, "warning: ") == 5);
+  for (const char* what : {"Mach 0.157 > 0.1", "past half the measured acoustic limit", "explicit Euler",
+                           "cubic spline at h/dx 1.5", "fewer wall layers"})
+    BOOST_TEST(r.output.find(what) != std::string::npos, "missing: " << what);
+  BOOST_TEST(r.output.find("5 warnings") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_it) {
+  const test::Result r = test::runSph({"check", shipped("dam_break_mm.case"), "--h", "-1"});
+  BOOST_TEST(r.exitCode == 2);
+  BOOST_TEST(r.output.find("h = -1 is out of range") != std::string::npos, r.output);
+  const test::Result m = test::runSph({"check", "no_such.case"});
+  BOOST_TEST(m.exitCode == 2);
+  BOOST_TEST(m.output.find("no_such.case") != std::string::npos, m.output);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
