@@ -172,6 +172,8 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
     for (const char* key : {"alpha", "beta"}) owned(key, {"monaghan"}, c.viscosity, "viscosity");
     if (c.viscosity != "laplacian") note("mu", "viscosity is " + c.viscosity + "; it applies to viscosity laplacian");
   }
+  if (c.densityReinit == "none")
+    note("density_reinit_every", "density_reinit is none; it applies to density_reinit shepard or mls");
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
   if (c.starMass == 0)
     for (const char* key : {"star_radius", "star_particles", "star_center", "star_velocity", "seed"})

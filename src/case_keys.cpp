@@ -33,6 +33,8 @@ std::vector<std::string> slipNames() { return {"no_slip", "free_slip"}; }
 std::vector<std::string> densityNames() { return methodNames(densityMethods()); }
 std::vector<std::string> diffusionNames() { return {"fourtakas", "molteni"}; }
 std::vector<std::string> negativePressureNames() { return {"none", "clamp"}; }
+std::vector<std::string> densityReinitNames() { return methodNames(densityReinitMethods()); }
+std::vector<std::string> gradientCorrectionNames() { return methodNames(gradientCorrectionMethods()); }
 
 std::string fmt(double x) {
   std::ostringstream s;
@@ -178,6 +180,17 @@ const std::vector<KeySpec>& caseKeys() {
       {"end_time", G::kNumerics, &C::endTime, "s",
        "Simulated time at which the run ends (absolute: a run continued from a snapshot at t ends there too)",
        above(0, 1e12), nullptr, nullptr},
+      {"density_reinit", G::kNumerics, &C::densityReinit, "",
+       "Density re-initialisation every density_reinit_every steps (model wcsph, density continuity): none, "
+       "shepard (zeroth order: keeps a constant density) or mls (first order, Colagrossi & Landrieu 2003: keeps "
+       "a linear one)",
+       {}, nullptr, densityReinitNames},
+      {"density_reinit_every", G::kNumerics, &C::densityReinitEvery, "", "Steps between two density re-initialisations",
+       count(1, 1e9), nullptr, nullptr},
+      {"gradient_correction", G::kNumerics, &C::gradientCorrection, "",
+       "Kernel gradient correction (model wcsph): none, or cspm (L_i grad W, exact for linear fields, in the "
+       "pressure gradient and the continuity velocity divergence)",
+       {}, nullptr, gradientCorrectionNames},
       {"threads", G::kNumerics, &C::threads, "",
        "OpenMP threads: a count from 1 to 1024 (OMP_NUM_THREADS is obeyed too), or auto: start from the cores "
        "this process may use and the load, and keep the faster of that and fewer threads, timed during the run",

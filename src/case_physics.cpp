@@ -21,6 +21,12 @@ void validateWallsAndDensity(const CaseConfig& c) {
       throw CaseError("density, hydrostatic_start, negative_pressure and obstacles need model = \"wcsph\"; "
                       "model seed_wcsph is the seed scheme exactly");
   }
+  if (seed && (c.densityReinit != "none" || c.gradientCorrection != "none"))
+    throw CaseError("density_reinit and gradient_correction need model = \"wcsph\"; model seed_wcsph is the seed "
+                    "scheme exactly");
+  if (c.densityReinit != "none" && c.density != "continuity")
+    throw CaseError("density_reinit = \"" + c.densityReinit + "\" needs density = \"continuity\" (summation "
+                    "density is recomputed from the positions at every step)");
   if (c.boundary == "dynamic" && c.density != "continuity")
     throw CaseError("boundary = \"dynamic\" needs density = \"continuity\" (dynamic wall particles carry a "
                     "density by the continuity equation)");

@@ -52,6 +52,11 @@ struct CaseConfig {
   bool hydrostaticStart = false;        // start at rest in hydrostatic balance
   std::string negativePressure = "none";  // none | clamp
 
+  // kernel corrections (model wcsph)
+  std::string densityReinit = "none";      // none | shepard | mls
+  long densityReinitEvery = 20;            // steps between two re-initialisations
+  std::string gradientCorrection = "none"; // none | cspm
+
   // wcsph: choices by name ("" = the model's default)
   std::string kernel;       // cubic_spline | wendland_c2 | gaussian | muller
   std::string eos;          // linear | linear_clamped | tait | polytropic

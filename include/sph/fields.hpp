@@ -44,6 +44,8 @@ enum FieldId : unsigned {
   kFieldDx,        // RK4: weighted sums of the stage derivatives
   kFieldDv,
   kFieldDrhoSum,
+  kFieldRhoReinit, // density re-initialisation (Shepard, MLS): the new densities, before they replace rho
+  kFieldCspmL,     // CSPM gradient correction L_i (D x D)
   kFieldCount
 };
 
@@ -84,6 +86,8 @@ inline constexpr FieldInfo kFieldTable[kFieldCount] = {
     {kFieldDx, "dx", FieldRole::kStage, nullptr},
     {kFieldDv, "dv", FieldRole::kStage, nullptr},
     {kFieldDrhoSum, "drhoSum", FieldRole::kStage, nullptr},
+    {kFieldRhoReinit, "rhoReinit", FieldRole::kDerived, nullptr},
+    {kFieldCspmL, "cspmL", FieldRole::kDerived, nullptr},
 };
 
 constexpr bool isPermuted(FieldRole r) { return r == FieldRole::kState || r == FieldRole::kStage; }

@@ -54,6 +54,9 @@ Model<D> makeModel(const CaseConfig& c) {
   spec.noSlip = c.wallSlip == "no_slip";
   spec.spacing = c.spacing;
   spec.clampNegative = c.negativePressure == "clamp";
+  spec.reinit = methodRow(densityReinitMethods(), "density_reinit", c.densityReinit).make(c);
+  spec.reinitEvery = c.densityReinitEvery;
+  spec.cspm = methodRow(gradientCorrectionMethods(), "gradient_correction", c.gradientCorrection).make(c);
   return makeWcsph<D>(spec);
 }
 

@@ -14,6 +14,10 @@
 //   static constexpr unsigned bit;      // term_bits.hpp: which pass it is
 //   static constexpr unsigned writes;   // which PairRates members it adds to
 //   template <int D> void add(const Pair<D>&, const Particles<D>&, PairRates<D>&) const;
+// A gradient correction (passes/cspm_correction.hpp) gives the pair its
+// corrected gradient gradWC = L_i grad_i W, used by the first-derivative
+// terms (pressure, continuity); without one (NoGradientCorrection) gradWC
+// is grad W itself and the compiler keeps one value.
 // The packs are std::tuples, so the compiler inlines every evaluator into
 // the loop: no per-pair virtual call or runtime switch, and an evaluator
 // that a case does not enable is not in the pack.
@@ -44,6 +48,14 @@ struct Pair {
   Real q;        // r / support
   Real dWdr_r;   // (dW/dr) / r, so that grad_i W = dWdr_r rij (0 without a kernel)
   Vec<D> gradW;  // grad_i W(r_ij)
+  Vec<D> gradWC; // corrected grad_i W (the pressure and continuity terms); = gradW without a correction
+};
+
+// No gradient correction: gradWC = gradW.
+struct NoGradientCorrection {
+  static constexpr bool kCorrects = false;
+  template <int D>
+  const Vec<D>& operator()(std::uint32_t, const Vec<D>& gradW) const { return gradW; }
 };
 
 template <int D>
@@ -88,9 +100,9 @@ inline void addPair(const Pack& pack, const Pair<D>& c, const Particles<D>& P, P
 }
 
 // Fill in r, q and the kernel terms of the pair (i, j).
-template <int D, class Kernel>
+template <int D, class Kernel, class Correction = NoGradientCorrection>
 inline Pair<D> makePair(std::uint32_t i, std::uint32_t j, const Vec<D>& xi, const Vec<D>& xj,
-                        const Kernel& kernel, Real invSupport) {
+                        const Kernel& kernel, Real invSupport, const Correction& correct = {}) {
   Pair<D> c;
   c.i = i;
   c.j = j;
@@ -103,9 +115,11 @@ inline Pair<D> makePair(std::uint32_t i, std::uint32_t j, const Vec<D>& xi, cons
     const Real r = c.r > 0 ? c.r : 1e-9 * kernel.h();
     c.dWdr_r = kernel.dWdr(r) / r;
     c.gradW = c.r > 0 ? Vec<D>(c.dWdr_r * c.rij) : Vec<D>::Zero();
+    c.gradWC = correct(i, c.gradW);
   } else {
     c.dWdr_r = 0;
     c.gradW = Vec<D>::Zero();
+    c.gradWC = c.gradW;
   }
   return c;
 }
@@ -119,12 +133,14 @@ struct PairLoopParts {
 // Returns the term bits of the packs it ran.
 //   epilogue(i, P, rates)       writes particle i's rates (fluid particles)
 //   wallEpilogue(i, P, rates)   the same for wall particles
+// `correct` corrects the gradients of the fluid particles' pairs (wall
+// particles' own rates use grad W as it is).
 template <int D, class Kernel, class FluidPairs, class WallPairs, class WallParticlePairs, class Epilogue,
-          class WallEpilogue>
+          class WallEpilogue, class Correction = NoGradientCorrection>
 unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
                      const FluidPairs& fluidPairs, const WallPairs& wallPairs,
                      const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
-                     const WallEpilogue& wallEpilogue, PairLoopParts parts = {}) {
+                     const WallEpilogue& wallEpilogue, PairLoopParts parts = {}, const Correction& correct = {}) {
   const std::size_t n = P.size(), nFluid = P.fluidCount();
   const Real invSupport = 1 / support;
   const bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0 && parts.wallParticles && P.hasWalls();
@@ -135,10 +151,12 @@ unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const 
       PairRates<D> r;
       const Vec<D> xi = P.x[i];
       const auto ii = static_cast<std::uint32_t>(i);
-      auto fluid = [&](std::uint32_t j) { addPair(fluidPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r); };
+      auto fluid = [&](std::uint32_t j) {
+        addPair(fluidPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, correct), P, r);
+      };
       if constexpr (decltype(byKind)::value)
         neighbours.forEachByKind(i, fluid, [&](std::uint32_t j) {
-          addPair(wallPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r);
+          addPair(wallPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, correct), P, r);
         });
       else
         neighbours.forEach(i, fluid);

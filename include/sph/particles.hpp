@@ -40,6 +40,8 @@ struct FieldArrays {
   std::vector<Real> rho0;
   std::vector<Vec<D>> dx, dv;
   std::vector<Real> drhoSum;
+  std::vector<Real> rhoReinit;
+  std::vector<Mat<D>> cspmL;
 
   // f(info, field of s0, field of s1, ...) for every row of the table, in
   // table order: the one place that lists the members.
@@ -65,6 +67,8 @@ struct FieldArrays {
     f(kFieldTable[kFieldDx], s.dx...);
     f(kFieldTable[kFieldDv], s.dv...);
     f(kFieldTable[kFieldDrhoSum], s.drhoSum...);
+    f(kFieldTable[kFieldRhoReinit], s.rhoReinit...);
+    f(kFieldTable[kFieldCspmL], s.cspmL...);
   }
 
   // Call f(info, array) for every field.
@@ -98,7 +102,7 @@ struct FieldArrays {
 
   template <class T>
   static T zero() {
-    if constexpr (std::is_same_v<T, Vec<D>>) return Vec<D>::Zero();
+    if constexpr (std::is_same_v<T, Vec<D>> || std::is_same_v<T, Mat<D>>) return T::Zero();
     else return T(0);
   }
 };

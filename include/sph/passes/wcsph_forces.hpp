@@ -11,15 +11,21 @@
 // per pair for all the terms. The terms that are on or off by a coefficient
 // (continuity, diffusion, XSPH) are switched at run time: off, each is one
 // predictable branch per pair, and the loop is compiled 4 kernels x 3
-// viscosities times, not 2^3 times more.
+// viscosities times, not 2^3 times more. With the CSPM gradient correction
+// (cspm_correction.hpp; its L_i computed by the pass before this one) the
+// pressure term is CspmPressure and the pair loop corrects the gradient of
+// the pressure and continuity terms: a second instantiation, chosen once
+// per evaluation; off, the loop is the one it was.
 #pragma once
 
 #include "sph/kernels/kernels.hpp"
 #include "sph/pair_loop.hpp"
+#include "sph/passes/cspm_correction.hpp"
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/body_forces.hpp"
 #include "sph/terms/continuity_density.hpp"
+#include "sph/terms/cspm_pressure.hpp"
 #include "sph/terms/density_diffusion.hpp"
 #include "sph/terms/laplacian_viscosity.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
@@ -64,22 +70,29 @@ struct WcsphForcePass {
   bool wallPairs = true;              // walls enter the SPH sums (not for repulsive walls)
   bool wallDensityRates = false;      // dynamic walls: d rho/dt of the wall particles
   bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
+  bool cspm = false;                  // CSPM-corrected pressure and continuity (needs cspmL)
+  bool cspmDifference = true;
+  bool cspmContinuity = true;
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
     const unsigned bits = std::visit(
         [&](const auto& k, const auto& visc) {
           using K = std::decay_t<decltype(k)>;
-          const ContinuityDensity rate{continuity};
-          const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, SymmetricPressure{}),
-                                                 viscosityPack<K, false>(k, visc),
-                                                 std::make_tuple(Xsph<K>{k, xsphEpsilon}));
-          const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, SymmetricPressure{}),
-                                                         viscosityPack<K, true>(k, visc, wallViscosity));
-          constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
-          return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
-                             std::make_tuple(ContinuityDensity{wallDensityRates}),
-                             ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity}, WallEpilogue<D>{},
-                             PairLoopParts{wallPairs, wallDensityRates});
+          auto loop = [&](const auto& pressure, const auto& correct) {
+            const ContinuityDensity rate{continuity, cspmContinuity};
+            const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, pressure),
+                                                   viscosityPack<K, false>(k, visc),
+                                                   std::make_tuple(Xsph<K>{k, xsphEpsilon}));
+            const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, pressure),
+                                                           viscosityPack<K, true>(k, visc, wallViscosity));
+            constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
+            return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
+                               std::make_tuple(ContinuityDensity{wallDensityRates}),
+                               ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity}, WallEpilogue<D>{},
+                               PairLoopParts{wallPairs, wallDensityRates}, correct);
+          };
+          if (cspm) return loop(CspmPressure{cspmDifference}, CspmCorrection<D>{P.cspmL.data()});
+          return loop(SymmetricPressure{}, NoGradientCorrection{});
         },
         kernel, viscosity);
     const unsigned walls = wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;

@@ -23,6 +23,10 @@ enum : unsigned {
   kAdamiWalls = 1u << 13,
   kDynamicWalls = 1u << 14,
   kRepulsiveWalls = 1u << 15,
+  kShepardDensity = 1u << 16,  // density re-initialisation, zeroth order
+  kMlsDensity = 1u << 17,      // density re-initialisation, first order (MLS)
+  kCspmCorrection = 1u << 18,  // the L_i pre-pass
+  kCspmPressure = 1u << 19,    // the pressure gradient with L_i
 };
 
 }  // namespace sph::term_bits
