@@ -6,7 +6,10 @@ compressible column dp/dy = -g rho(p), in units of rho0 g H, from the last
 snapshot of a run of cases/hydrostatic_tank.case; beside it the figures of
 validation/validate.py hydrostatic (the deep layers).
 
-  corrections_surface.py RUN_DIR [RUN_DIR ...]
+  corrections_surface.py [--time T] RUN_DIR [RUN_DIR ...]
+
+--time T: the snapshot at (or last before) simulated time T instead of the
+last one (the deep figures are always those of the last snapshot).
 """
 import os
 import sys
@@ -17,10 +20,13 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import observables  # noqa: E402
 
 
-def surface_errors(folder):
+def surface_errors(folder, time=None):
     run = observables.Run(folder)
     c = run.case
     s = run.last()
+    if time is not None:
+        path = [p for t, p in run.entries if t <= time + 1e-9][-1]
+        s = observables.Snapshot(path)
     rho0, g, dx = c["rho0"], c["g"], c["spacing"]
     up = c["dimension"] - 1
     support = {"cubic_spline": 2, "wendland_c2": 2, "gaussian": 3, "muller": 1}[c["kernel"]] * c["h"]
@@ -51,8 +57,13 @@ def surface_errors(folder):
 
 
 def main():
-    for folder in sys.argv[1:]:
-        e = surface_errors(folder)
+    args = sys.argv[1:]
+    time = None
+    if args and args[0] == "--time":
+        time = float(args[1])
+        args = args[2:]
+    for folder in args:
+        e = surface_errors(folder, time)
         d = e["deep"]
         layers = ", ".join(f"{k}: {v * 100:+.2f}%" for k, v in e["per_layer"].items())
         print(f"{folder}: t = {e['time']:.3f} s")

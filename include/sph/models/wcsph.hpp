@@ -20,7 +20,6 @@
 
 #include "sph/models/model.hpp"
 
-#include <cstdlib>
 #include <string>
 
 namespace sph {
@@ -98,11 +97,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   forces.wallDensityRates = s.walls == WallTreatment::kDynamic;
   forces.wallViscosity = s.noSlip;
   forces.cspm = s.cspm;
-  if (const char* e = std::getenv("SPH_CSPM_VARIANT")) {
-    const int v = std::atoi(e);
-    forces.cspmDifference = v == 0;
-    forces.cspmContinuity = v != 2;
-  }
+
   if (s.walls == WallTreatment::kDummy || s.walls == WallTreatment::kDynamic) info.needs |= fieldBit(kFieldVWall);
 
   std::vector<Pass<D>> passes;

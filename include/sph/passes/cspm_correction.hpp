@@ -13,7 +13,8 @@
 // support. This pass computes L_i into the field cspmL before the forces;
 // the pair loop hands each fluid pair gradWC = L_i grad_i W (CspmCorrection
 // below), which the pressure term (cspm_pressure.hpp) and the continuity
-// term use; viscosity and density diffusion keep grad W.
+// term (the velocity divergence, exact for a linear velocity field) use;
+// viscosity and density diffusion keep grad W.
 //
 // Neighbours: fluid and, when the walls are in the SPH sums (dummy,
 // dynamic), the wall particles with their own m and rho: the same

@@ -71,15 +71,13 @@ struct WcsphForcePass {
   bool wallDensityRates = false;      // dynamic walls: d rho/dt of the wall particles
   bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
   bool cspm = false;                  // CSPM-corrected pressure and continuity (needs cspmL)
-  bool cspmDifference = true;
-  bool cspmContinuity = true;
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
     const unsigned bits = std::visit(
         [&](const auto& k, const auto& visc) {
           using K = std::decay_t<decltype(k)>;
           auto loop = [&](const auto& pressure, const auto& correct) {
-            const ContinuityDensity rate{continuity, cspmContinuity};
+            const ContinuityDensity rate{continuity};
             const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, pressure),
                                                    viscosityPack<K, false>(k, visc),
                                                    std::make_tuple(Xsph<K>{k, xsphEpsilon}));
@@ -91,7 +89,7 @@ struct WcsphForcePass {
                                ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity}, WallEpilogue<D>{},
                                PairLoopParts{wallPairs, wallDensityRates}, correct);
           };
-          if (cspm) return loop(CspmPressure{cspmDifference}, CspmCorrection<D>{P.cspmL.data()});
+          if (cspm) return loop(CspmPressure{}, CspmCorrection<D>{P.cspmL.data()});
           return loop(SymmetricPressure{}, NoGradientCorrection{});
         },
         kernel, viscosity);

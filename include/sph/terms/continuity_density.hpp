@@ -19,14 +19,13 @@ struct ContinuityDensity {
   static constexpr unsigned bit = term_bits::kContinuityDensity;
   static constexpr unsigned writes = rates::kDensityRate;
   bool on = false;
-  bool corrected = true;  // use gradWC
 
   bool active() const { return on; }
 
   template <int D>
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
     if (!on) return;
-    r.drho += P.m[c.j] * (P.v[c.i] - P.v[c.j]).dot(corrected ? c.gradWC : c.gradW);
+    r.drho += P.m[c.j] * (P.v[c.i] - P.v[c.j]).dot(c.gradWC);
   }
 };
 
