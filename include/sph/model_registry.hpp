@@ -54,6 +54,11 @@ Model<D> makeModel(const CaseConfig& c) {
   spec.noSlip = c.wallSlip == "no_slip";
   spec.spacing = c.spacing;
   spec.clampNegative = c.negativePressure == "clamp";
+  spec.artificialPressure = c.artificialPressure;
+  spec.artificialPressureN = static_cast<int>(c.artificialPressureN);
+  if (c.surfaceTension != "none") spec.surfaceTension = c.sigma;
+  spec.curvature = c.surfaceTension == "muller" ? CurvatureMethod::kMuller : CurvatureMethod::kMorris;
+  spec.surfaceThreshold = c.surfaceThreshold;
   return makeWcsph<D>(spec);
 }
 

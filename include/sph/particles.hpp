@@ -40,6 +40,9 @@ struct FieldArrays {
   std::vector<Real> rho0;
   std::vector<Vec<D>> dx, dv;
   std::vector<Real> drhoSum;
+  std::vector<Real> colour;
+  std::vector<Vec<D>> colourNormal;
+  std::vector<Real> curvature;
 
   // f(info, field of s0, field of s1, ...) for every row of the table, in
   // table order: the one place that lists the members.
@@ -65,6 +68,9 @@ struct FieldArrays {
     f(kFieldTable[kFieldDx], s.dx...);
     f(kFieldTable[kFieldDv], s.dv...);
     f(kFieldTable[kFieldDrhoSum], s.drhoSum...);
+    f(kFieldTable[kFieldColour], s.colour...);
+    f(kFieldTable[kFieldColourNormal], s.colourNormal...);
+    f(kFieldTable[kFieldCurvature], s.curvature...);
   }
 
   // Call f(info, array) for every field.

@@ -2,6 +2,7 @@
 // variant: a model holds an ordered list of them.
 #pragma once
 
+#include "sph/passes/colour_field.hpp"
 #include "sph/passes/equation_of_state.hpp"
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/summation_density.hpp"
@@ -14,6 +15,6 @@ namespace sph {
 
 template <int D>
 using Pass = std::variant<SummationDensityPass<D>, EquationOfStatePass<D>, AdamiWallsPass<D>, SeedForcePass<D>,
-                          WcsphForcePass<D>, RepulsiveWallsPass<D>>;
+                          WcsphForcePass<D>, RepulsiveWallsPass<D>, ColourFieldPass<D>>;
 
 }  // namespace sph

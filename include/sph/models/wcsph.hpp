@@ -5,11 +5,14 @@
 //   p_i   = EOS(rho_i)                                          (equation_of_state.hpp)
 //   a_i   = - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) grad W     (symmetric_pressure.hpp)
 //           + viscosity (none | laplacian | monaghan)
+//           [+ artificial pressure, Monaghan 2000]             (artificial_pressure.hpp)
 //           + body forces (gravity -g e_up, star -lambda x, damping -nu v)
+//           [+ colour-field surface tension]                  (colour_surface_tension.hpp)
 //   dx_i/dt = v_i [+ XSPH correction]
 // (Monaghan 1992; Monaghan 2005, "Smoothed particle hydrodynamics", Rep. Prog. Phys. 68.)
 //
-// Passes: summation density with the EOS, then the fused force pass. A
+// Passes: summation density with the EOS, [the colour field,] then the
+// fused force pass. A
 // viscosity set to none or a body force whose coefficient is zero is never
 // constructed, and the arrays it would need (sound speed, XSPH correction)
 // never allocated.
@@ -43,6 +46,11 @@ struct WcsphSpec {
   bool noSlip = true;          // dummy/dynamic walls in the viscous term
   Real spacing = 0;            // fluid spacing dx (repulsive walls)
   bool clampNegative = false;  // negative_pressure = clamp
+  Real artificialPressure = 0; // Monaghan 2000 epsilon (0: off); needs spacing
+  int artificialPressureN = 4;
+  Real surfaceTension = 0;     // sigma of the colour-field force (0: off)
+  CurvatureMethod curvature = CurvatureMethod::kMorris;
+  Real surfaceThreshold = 0.1; // |n| > threshold / h
 };
 
 template <int D>
@@ -76,7 +84,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back("xsph");
   }
 
-  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true};
+  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true, 0, 4, 0, std::nullopt};
   forces.continuity = continuity;
   if (continuity && s.delta > 0) {
     forces.diffusion.coefficient = 2 * s.delta * h * c0;
@@ -87,6 +95,19 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   forces.wallPairs = s.walls != WallTreatment::kRepulsive;
   forces.wallDensityRates = s.walls == WallTreatment::kDynamic;
   forces.wallViscosity = s.noSlip;
+  if (s.artificialPressure > 0) {
+    forces.artificialPressure = s.artificialPressure;
+    forces.artificialPressureN = s.artificialPressureN;
+    forces.spacing = s.spacing;
+    info.termNames.push_back("artificial_pressure_monaghan2000");
+  }
+  if (s.surfaceTension > 0) {
+    forces.surfaceTension = ColourSurfaceTension<D>{s.surfaceTension, s.surfaceThreshold / h};
+    info.needs |= fieldBit(kFieldColour) | fieldBit(kFieldColourNormal) | fieldBit(kFieldCurvature);
+    info.termNames.push_back("colour_field");
+    info.termNames.push_back(s.curvature == CurvatureMethod::kMuller ? "surface_tension_muller2003"
+                                                                     : "surface_tension_morris2000");
+  }
   if (s.walls == WallTreatment::kDummy || s.walls == WallTreatment::kDynamic) info.needs |= fieldBit(kFieldVWall);
 
   std::vector<Pass<D>> passes;
@@ -103,6 +124,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back("dummy_walls_adami2012");
   }
   if (s.walls == WallTreatment::kDynamic) info.termNames.push_back("dynamic_walls_crespo2007");
+  if (s.surfaceTension > 0) passes.push_back(ColourFieldPass<D>{s.kernel, s.curvature, s.surfaceThreshold / h});
   passes.push_back(forces);
   if (s.walls == WallTreatment::kRepulsive) {
     passes.push_back(RepulsiveWallsPass<D>{RepulsiveForce{c0 * c0, s.spacing, h}});

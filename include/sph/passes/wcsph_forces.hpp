@@ -1,7 +1,9 @@
 // Pass: the wcsph model's pair terms fused in one pair loop:
 //   d rho_i/dt = continuity + density diffusion        (density = continuity)
-//   a_i        = symmetric pressure + viscosity (none | laplacian | monaghan)
-//                + body forces (epilogue),   XSPH correction (when eps > 0).
+//   a_i        = symmetric pressure [+ Monaghan's artificial pressure]
+//                + viscosity (none | laplacian | monaghan)
+//                + body forces and surface tension (epilogue),
+//   XSPH correction (when eps > 0).
 // Fluid neighbours and wall neighbours (dummy or dynamic wall particles,
 // with their p, rho and the velocity they show the fluid) go through the
 // same terms, less the diffusion and XSPH; dynamic wall particles get their
@@ -18,6 +20,7 @@
 #include "sph/pair_loop.hpp"
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/step_context.hpp"
+#include "sph/terms/artificial_pressure.hpp"
 #include "sph/terms/body_forces.hpp"
 #include "sph/terms/continuity_density.hpp"
 #include "sph/terms/density_diffusion.hpp"
@@ -26,6 +29,7 @@
 #include "sph/terms/symmetric_pressure.hpp"
 #include "sph/terms/xsph.hpp"
 
+#include <optional>
 #include <tuple>
 #include <variant>
 
@@ -64,13 +68,19 @@ struct WcsphForcePass {
   bool wallPairs = true;              // walls enter the SPH sums (not for repulsive walls)
   bool wallDensityRates = false;      // dynamic walls: d rho/dt of the wall particles
   bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
+  Real artificialPressure = 0;        // Monaghan 2000 epsilon (0: off)
+  int artificialPressureN = 4;        // its exponent n
+  Real spacing = 0;                   // dx of f_ij = W(r)/W(dx)
+  std::optional<ColourSurfaceTension<D>> surfaceTension;  // from the colour pre-pass
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
     const unsigned bits = std::visit(
         [&](const auto& k, const auto& visc) {
           using K = std::decay_t<decltype(k)>;
           const ContinuityDensity rate{continuity};
-          const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, SymmetricPressure{}),
+          const MonaghanArtificialPressure<K> tension{k, artificialPressure, artificialPressureN,
+                                                      artificialPressure > 0 ? 1 / k.W(spacing) : 0};
+          const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, SymmetricPressure{}, tension),
                                                  viscosityPack<K, false>(k, visc),
                                                  std::make_tuple(Xsph<K>{k, xsphEpsilon}));
           const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, SymmetricPressure{}),
@@ -78,12 +88,14 @@ struct WcsphForcePass {
           constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
           return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
                              std::make_tuple(ContinuityDensity{wallDensityRates}),
-                             ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity}, WallEpilogue<D>{},
+                             ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity,
+                                                      surfaceTension ? &*surfaceTension : nullptr},
+                             WallEpilogue<D>{},
                              PairLoopParts{wallPairs, wallDensityRates});
         },
         kernel, viscosity);
     const unsigned walls = wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
-    return bits | walls | bodies.bits();
+    return bits | walls | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
   }
 };
 

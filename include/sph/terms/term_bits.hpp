@@ -23,6 +23,9 @@ enum : unsigned {
   kAdamiWalls = 1u << 13,
   kDynamicWalls = 1u << 14,
   kRepulsiveWalls = 1u << 15,
+  kArtificialPressure = 1u << 16,
+  kColourField = 1u << 17,
+  kSurfaceTension = 1u << 18,
 };
 
 }  // namespace sph::term_bits
