@@ -121,7 +121,6 @@ BOOST_AUTO_TEST_CASE(curvature_of_a_circular_drop_is_one_over_r_at_two_resolutio
   const Real R = 0.2;
   for (const std::string method : {"morris", "muller"})
     for (const auto& [kernel, hOverDx] : {std::pair<std::string, Real>{"muller", 3.0}, {"cubic_spline", 1.3}}) {
-      Real previous = 1;
       for (const int perR : {10, 20}) {
         const Real dx = R / perR;
         const int n = static_cast<int>(std::lround(0.8 / dx));
@@ -145,10 +144,9 @@ BOOST_AUTO_TEST_CASE(curvature_of_a_circular_drop_is_one_over_r_at_two_resolutio
         // = 3.3 and 6.7 for Mueller at h = 3 dx, 3.8 and 7.7 for the cubic
         // at 2.6 dx), so the (support/R)^2 term is several percent at
         // R/dx = 10 and a quarter of that at 20; the lattice's staircase
-        // circle adds O(dx/R). 10% and 5%, and the finer must not be worse.
+        // circle adds O(dx/R) of either sign (so the error need not fall
+        // monotonically between two resolutions). 10% and 5%.
         BOOST_TEST(std::abs(kappaR - 1) < (perR == 10 ? 0.10 : 0.05));
-        BOOST_TEST(std::abs(kappaR - 1) <= std::abs(previous - 1) + 0.01);
-        previous = kappaR;
       }
     }
 }
@@ -296,7 +294,7 @@ BOOST_AUTO_TEST_CASE(bad_surface_tension_input_is_refused) {
   const std::string file = test::caseFile("droplet_surface_tension");
   for (const auto& [args, words] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"--sigma", "0"}, "sigma > 0"},
-           {{"--surface_tension", "morris"}, "surface_tension"},
+           {{"--surface_tension", "marangoni"}, "surface_tension"},
            {{"--colour_box_min", "0.1"}, "colour_box_min"},
            {{"--artificial_pressure", "-1"}, "artificial_pressure"},
            {{"--artificial_pressure_n", "0"}, "artificial_pressure_n"}}) {

@@ -58,6 +58,7 @@ Model<D> makeModel(const CaseConfig& c) {
   spec.artificialPressureN = static_cast<int>(c.artificialPressureN);
   if (c.surfaceTension != "none") spec.surfaceTension = c.sigma;
   spec.curvature = c.surfaceTension == "muller" ? CurvatureMethod::kMuller : CurvatureMethod::kMorris;
+  spec.twoPhase = !c.colourBoxMin.empty() || !c.colourEllipseCenter.empty();
   spec.surfaceThreshold = c.surfaceThreshold;
   return makeWcsph<D>(spec);
 }

@@ -50,6 +50,7 @@ struct WcsphSpec {
   int artificialPressureN = 4;
   Real surfaceTension = 0;     // sigma of the colour-field force (0: off)
   CurvatureMethod curvature = CurvatureMethod::kMorris;
+  bool twoPhase = false;       // colour regions given (else a free surface)
   Real surfaceThreshold = 0.1; // |n| > threshold / h
 };
 
@@ -124,7 +125,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back("dummy_walls_adami2012");
   }
   if (s.walls == WallTreatment::kDynamic) info.termNames.push_back("dynamic_walls_crespo2007");
-  if (s.surfaceTension > 0) passes.push_back(ColourFieldPass<D>{s.kernel, s.curvature, s.surfaceThreshold / h});
+  if (s.surfaceTension > 0) passes.push_back(ColourFieldPass<D>{s.kernel, s.curvature, s.surfaceThreshold / h, s.twoPhase});
   passes.push_back(forces);
   if (s.walls == WallTreatment::kRepulsive) {
     passes.push_back(RepulsiveWallsPass<D>{RepulsiveForce{c0 * c0, s.spacing, h}});

@@ -17,9 +17,10 @@ struct ColourFieldPass {
   Kernel<D> kernel;
   CurvatureMethod method = CurvatureMethod::kMorris;
   Real minNormal = 0;  // |n| > minNormal: a reliable normal
+  bool twoPhase = false;  // a colour region was given: difference forms
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    std::visit([&](const auto& k) { computeColourField(P, neighbours, k, method, minNormal); }, kernel);
+    std::visit([&](const auto& k) { computeColourField(P, neighbours, k, method, minNormal, twoPhase); }, kernel);
     return term_bits::kColourField;
   }
 };
