@@ -59,6 +59,7 @@ void validateCase(const CaseConfig& c) {
   }
   if (c.eos == "tait") requirePositive("c0", c.c0);
   validateWallsAndDensity(c);
+  validateTension(c);
   if (c.name.empty() || c.name == "." || c.name == ".." ||
       c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
     throw CaseError("name = \"" + c.name + "\" is not allowed: use letters, digits, '_', '-' and '.' (not . or ..)");
@@ -174,6 +175,12 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
   }
   if (c.densityReinit == "none")
     note("density_reinit_every", "density_reinit is none; it applies to density_reinit shepard or mls");
+  if (seed || c.artificialPressure == 0)
+    note("artificial_pressure_n", "artificial_pressure is 0 (off); it applies to artificial_pressure > 0");
+  if (seed || c.surfaceTension == "none")
+    for (const char* key : {"sigma", "surface_threshold", "colour_box_min", "colour_box_max", "colour_ellipse_center",
+                            "colour_ellipse_radii"})
+      note(key, "surface_tension is none; it applies to surface_tension morris or muller");
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
   if (c.starMass == 0)
     for (const char* key : {"star_radius", "star_particles", "star_center", "star_velocity", "seed"})

@@ -35,6 +35,7 @@ std::vector<std::string> diffusionNames() { return {"fourtakas", "molteni"}; }
 std::vector<std::string> negativePressureNames() { return {"none", "clamp"}; }
 std::vector<std::string> densityReinitNames() { return methodNames(densityReinitMethods()); }
 std::vector<std::string> gradientCorrectionNames() { return methodNames(gradientCorrectionMethods()); }
+std::vector<std::string> surfaceTensionNames() { return {"none", "morris", "muller"}; }
 
 std::string fmt(double x) {
   std::ostringstream s;
@@ -171,6 +172,33 @@ const std::vector<KeySpec>& caseKeys() {
       {"xsph", G::kPhysics, &C::xsph, "", "XSPH epsilon (model wcsph; 0: off)", within(0, 1), nullptr, nullptr},
       {"damping", G::kPhysics, &C::damping, "1/s", "Linear damping nu in a = -nu v (model wcsph; 0: off)",
        within(0, 1e6), nullptr, nullptr},
+      // Tensile instability and surface tension (model wcsph)
+      {"artificial_pressure", G::kPhysics, &C::artificialPressure, "",
+       "Monaghan (2000) artificial pressure epsilon against the tensile instability: R_ij (W_ij/W(dx))^n added to "
+       "the pressure term (0: off; 0.2 usual; needs spacing)",
+       within(0, 10), nullptr, nullptr},
+      {"artificial_pressure_n", G::kPhysics, &C::artificialPressureN, "",
+       "Exponent n of (W_ij/W(dx))^n in the artificial pressure (4 usual)", count(1, 16), nullptr, nullptr},
+      {"surface_tension", G::kPhysics, &C::surfaceTension, "",
+       "Colour-field surface tension f = sigma kappa grad c: none; morris: kappa = -div(n/|n|) (Morris 2000); "
+       "muller: kappa = -lap c/|n|, f = -sigma lap c n/|n| (Mueller, Charypar & Gross 2003)",
+       {}, nullptr, surfaceTensionNames},
+      {"sigma", G::kPhysics, &C::sigma, "N/m (3D), N (2D, per unit depth)",
+       "Surface tension coefficient (surface_tension morris or muller; must be > 0 then)", within(0, 1e9), nullptr, nullptr},
+      {"surface_threshold", G::kPhysics, &C::surfaceThreshold, "",
+       "The surface force acts where |grad c| > surface_threshold / h (surface_tension morris or muller)", within(0, 100),
+       nullptr, nullptr},
+      {"colour_box_min", G::kScene, &C::colourBoxMin, "m",
+       "Surface tension between two phases: fluid particles inside this box start with colour 1, the rest with "
+       "colour 0 (D values; no colour box or ellipse: every fluid particle has colour 1, a free surface)",
+       coordinate(), "none", nullptr},
+      {"colour_box_max", G::kScene, &C::colourBoxMax, "m", "Upper corner of the colour box (D values)", coordinate(),
+       "none", nullptr},
+      {"colour_ellipse_center", G::kScene, &C::colourEllipseCenter, "m",
+       "Two phases: fluid particles inside this ellipse (ellipsoid) start with colour 1 too (D values)", coordinate(),
+       "none", nullptr},
+      {"colour_ellipse_radii", G::kScene, &C::colourEllipseRadii, "m",
+       "Semi-axes of the colour ellipse along x, y[, z] (equal: a circle or sphere)", within(0, 1e9), "none", nullptr},
       // Numerics
       {"integrator", G::kNumerics, &C::integrator, "", "Time integrator", {}, "leap_frog", integratorNames},
       {"dt", G::kNumerics, &C::dt, "s", "Time step (with cfl > 0: the largest step)", above(0, 1e9), nullptr,

@@ -67,6 +67,13 @@ struct CaseConfig {
   Real alpha = 1, beta = 2; // Monaghan artificial viscosity
   Real xsph = 0;            // XSPH epsilon (0: off)
   Real damping = 0;         // nu in a = -nu v (0: off)
+  Real artificialPressure = 0;   // Monaghan 2000 artificial pressure epsilon (0: off)
+  long artificialPressureN = 4;  // its exponent n in f_ij^n
+  std::string surfaceTension = "none";  // none | morris | muller (colour-field force, terms/colour_surface_tension.hpp)
+  Real sigma = 0;                // surface tension coefficient [N/m in 3D, N in 2D per unit depth]
+  Real surfaceThreshold = 0.1;   // the force acts where |grad c| > surface_threshold / h
+  std::vector<Real> colourBoxMin, colourBoxMax;  // particles inside start with colour 1, the rest 0
+  std::vector<Real> colourEllipseCenter, colourEllipseRadii;  // ... or inside this ellipse (ellipsoid)
 
   // toy star(s)
   Real starMass = 0;                // M (0: no star)
@@ -123,6 +130,8 @@ void validateCase(const CaseConfig& c);
 
 // The wall-particle and density keys (src/case_physics.cpp), part of validateCase.
 void validateWallsAndDensity(const CaseConfig& c);
+// The artificial-pressure and surface-tension keys (src/case_physics.cpp), part of validateCase.
+void validateTension(const CaseConfig& c);
 
 // The thread count a validated `threads` key asks for (0: auto).
 int requestedThreads(const CaseConfig& c);

@@ -46,6 +46,9 @@ enum FieldId : unsigned {
   kFieldDrhoSum,
   kFieldRhoReinit, // density re-initialisation (Shepard, MLS): the new densities, before they replace rho
   kFieldCspmL,     // CSPM gradient correction L_i (D x D)
+  kFieldColour,    // colour (phase) of a fluid particle: 1 in the phase with surface tension, 0 outside
+  kFieldColourNormal,     // colour-field normal n = grad c (surface tension)
+  kFieldCurvature,        // curvature kappa of the colour field's surface (surface tension)
   kFieldCount
 };
 
@@ -88,6 +91,9 @@ inline constexpr FieldInfo kFieldTable[kFieldCount] = {
     {kFieldDrhoSum, "drhoSum", FieldRole::kStage, nullptr},
     {kFieldRhoReinit, "rhoReinit", FieldRole::kDerived, nullptr},
     {kFieldCspmL, "cspmL", FieldRole::kDerived, nullptr},
+    {kFieldColour, "colour", FieldRole::kState, "colour"},
+    {kFieldColourNormal, "colourNormal", FieldRole::kDerived, "colour_normal"},
+    {kFieldCurvature, "curvature", FieldRole::kDerived, "curvature"},
 };
 
 constexpr bool isPermuted(FieldRole r) { return r == FieldRole::kState || r == FieldRole::kStage; }

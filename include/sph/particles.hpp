@@ -42,6 +42,9 @@ struct FieldArrays {
   std::vector<Real> drhoSum;
   std::vector<Real> rhoReinit;
   std::vector<Mat<D>> cspmL;
+  std::vector<Real> colour;
+  std::vector<Vec<D>> colourNormal;
+  std::vector<Real> curvature;
 
   // f(info, field of s0, field of s1, ...) for every row of the table, in
   // table order: the one place that lists the members.
@@ -69,6 +72,9 @@ struct FieldArrays {
     f(kFieldTable[kFieldDrhoSum], s.drhoSum...);
     f(kFieldTable[kFieldRhoReinit], s.rhoReinit...);
     f(kFieldTable[kFieldCspmL], s.cspmL...);
+    f(kFieldTable[kFieldColour], s.colour...);
+    f(kFieldTable[kFieldColourNormal], s.colourNormal...);
+    f(kFieldTable[kFieldCurvature], s.curvature...);
   }
 
   // Call f(info, array) for every field.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "sph/passes/cspm_correction.hpp"
+#include "sph/passes/colour_field.hpp"
 #include "sph/passes/equation_of_state.hpp"
 #include "sph/passes/mls_density.hpp"
 #include "sph/passes/shepard_density.hpp"
@@ -18,6 +19,6 @@ namespace sph {
 template <int D>
 using Pass = std::variant<SummationDensityPass<D>, EquationOfStatePass<D>, AdamiWallsPass<D>, SeedForcePass<D>,
                           WcsphForcePass<D>, RepulsiveWallsPass<D>, CspmCorrectionPass<D>, ShepardDensityPass<D>,
-                          MlsDensityPass<D>>;
+                          MlsDensityPass<D>, ColourFieldPass<D>>;
 
 }  // namespace sph

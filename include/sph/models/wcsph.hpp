@@ -5,14 +5,17 @@
 //   p_i   = EOS(rho_i)                                          (equation_of_state.hpp)
 //   a_i   = - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) grad W     (symmetric_pressure.hpp)
 //           + viscosity (none | laplacian | monaghan)
+//           [+ artificial pressure, Monaghan 2000]             (artificial_pressure.hpp)
 //           + body forces (gravity -g e_up, star -lambda x, damping -nu v)
+//           [+ colour-field surface tension]                  (colour_surface_tension.hpp)
 //   dx_i/dt = v_i [+ XSPH correction]
 // (Monaghan 1992; Monaghan 2005, "Smoothed particle hydrodynamics", Rep. Prog. Phys. 68.)
 //
 // Passes: summation density with the EOS (or the EOS of the integrated
 // density), the walls' pre-pass, the CSPM correction L_i when it is on,
-// then the fused force pass; after a step, the density re-initialisation
-// (Shepard or MLS) every N steps when it is on. A
+// the colour field when surface tension is on, then the fused force pass;
+// after a step, the density re-initialisation (Shepard or MLS) every N
+// steps when it is on. A
 // viscosity set to none or a body force whose coefficient is zero is never
 // constructed, and the arrays it would need (sound speed, XSPH correction)
 // never allocated.
@@ -52,6 +55,12 @@ struct WcsphSpec {
   DensityReinit reinit = DensityReinit::kNone;
   long reinitEvery = 20;       // steps between re-initialisations
   bool cspm = false;           // CSPM gradient correction in pressure and continuity
+  Real artificialPressure = 0; // Monaghan 2000 epsilon (0: off); needs spacing
+  int artificialPressureN = 4;
+  Real surfaceTension = 0;     // sigma of the colour-field force (0: off)
+  CurvatureMethod curvature = CurvatureMethod::kMorris;
+  bool twoPhase = false;       // colour regions given (else a free surface)
+  Real surfaceThreshold = 0.1; // |n| > threshold / h
 };
 
 template <int D>
@@ -85,7 +94,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back("xsph");
   }
 
-  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true};
+  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true, 0, 4, 0, std::nullopt};
   forces.continuity = continuity;
   if (continuity && s.delta > 0) {
     forces.diffusion.coefficient = 2 * s.delta * h * c0;
@@ -98,6 +107,19 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   forces.wallViscosity = s.noSlip;
   forces.cspm = s.cspm;
 
+  if (s.artificialPressure > 0) {
+    forces.artificialPressure = s.artificialPressure;
+    forces.artificialPressureN = s.artificialPressureN;
+    forces.spacing = s.spacing;
+    info.termNames.push_back("artificial_pressure_monaghan2000");
+  }
+  if (s.surfaceTension > 0) {
+    forces.surfaceTension = ColourSurfaceTension<D>{s.surfaceTension, s.surfaceThreshold / h};
+    info.needs |= fieldBit(kFieldColour) | fieldBit(kFieldColourNormal) | fieldBit(kFieldCurvature);
+    info.termNames.push_back("colour_field");
+    info.termNames.push_back(s.curvature == CurvatureMethod::kMuller ? "surface_tension_muller2003"
+                                                                     : "surface_tension_morris2000");
+  }
   if (s.walls == WallTreatment::kDummy || s.walls == WallTreatment::kDynamic) info.needs |= fieldBit(kFieldVWall);
 
   std::vector<Pass<D>> passes;
@@ -120,6 +142,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.needs |= fieldBit(kFieldCspmL);
     info.termNames.push_back("cspm_gradient_correction");
   }
+  if (s.surfaceTension > 0) passes.push_back(ColourFieldPass<D>{s.kernel, s.curvature, s.surfaceThreshold / h, s.twoPhase});
   passes.push_back(forces);
   if (s.walls == WallTreatment::kRepulsive) {
     passes.push_back(RepulsiveWallsPass<D>{RepulsiveForce{c0 * c0, s.spacing, h}});

@@ -1,7 +1,9 @@
 // Pass: the wcsph model's pair terms fused in one pair loop:
 //   d rho_i/dt = continuity + density diffusion        (density = continuity)
-//   a_i        = symmetric pressure + viscosity (none | laplacian | monaghan)
-//                + body forces (epilogue),   XSPH correction (when eps > 0).
+//   a_i        = symmetric pressure [+ Monaghan's artificial pressure]
+//                + viscosity (none | laplacian | monaghan)
+//                + body forces and surface tension (epilogue),
+//   XSPH correction (when eps > 0).
 // Fluid neighbours and wall neighbours (dummy or dynamic wall particles,
 // with their p, rho and the velocity they show the fluid) go through the
 // same terms, less the diffusion and XSPH; dynamic wall particles get their
@@ -23,6 +25,7 @@
 #include "sph/passes/cspm_correction.hpp"
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/step_context.hpp"
+#include "sph/terms/artificial_pressure.hpp"
 #include "sph/terms/body_forces.hpp"
 #include "sph/terms/continuity_density.hpp"
 #include "sph/terms/cspm_pressure.hpp"
@@ -32,6 +35,7 @@
 #include "sph/terms/symmetric_pressure.hpp"
 #include "sph/terms/xsph.hpp"
 
+#include <optional>
 #include <tuple>
 #include <variant>
 
@@ -71,6 +75,10 @@ struct WcsphForcePass {
   bool wallDensityRates = false;      // dynamic walls: d rho/dt of the wall particles
   bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
   bool cspm = false;                  // CSPM-corrected pressure and continuity (needs cspmL)
+  Real artificialPressure = 0;        // Monaghan 2000 epsilon (0: off)
+  int artificialPressureN = 4;        // its exponent n
+  Real spacing = 0;                   // dx of f_ij = W(r)/W(dx)
+  std::optional<ColourSurfaceTension<D>> surfaceTension;  // from the colour pre-pass
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
     const unsigned bits = std::visit(
@@ -78,7 +86,9 @@ struct WcsphForcePass {
           using K = std::decay_t<decltype(k)>;
           auto loop = [&](const auto& pressure, const auto& correct) {
             const ContinuityDensity rate{continuity};
-            const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, pressure),
+            const MonaghanArtificialPressure<K> tension{k, artificialPressure, artificialPressureN,
+                                                        artificialPressure > 0 ? 1 / k.W(spacing) : 0};
+            const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, pressure, tension),
                                                    viscosityPack<K, false>(k, visc),
                                                    std::make_tuple(Xsph<K>{k, xsphEpsilon}));
             const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, pressure),
@@ -86,15 +96,16 @@ struct WcsphForcePass {
             constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
             return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
                                std::make_tuple(ContinuityDensity{wallDensityRates}),
-                               ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity}, WallEpilogue<D>{},
-                               PairLoopParts{wallPairs, wallDensityRates}, correct);
+                               ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity,
+                                                        surfaceTension ? &*surfaceTension : nullptr},
+                               WallEpilogue<D>{}, PairLoopParts{wallPairs, wallDensityRates}, correct);
           };
           if (cspm) return loop(CspmPressure{}, CspmCorrection<D>{P.cspmL.data()});
           return loop(SymmetricPressure{}, NoGradientCorrection{});
         },
         kernel, viscosity);
     const unsigned walls = wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
-    return bits | walls | bodies.bits();
+    return bits | walls | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
   }
 };
 

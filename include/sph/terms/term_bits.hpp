@@ -27,6 +27,9 @@ enum : unsigned {
   kMlsDensity = 1u << 17,      // density re-initialisation, first order (MLS)
   kCspmCorrection = 1u << 18,  // the L_i pre-pass
   kCspmPressure = 1u << 19,    // the pressure gradient with L_i
+  kArtificialPressure = 1u << 20,
+  kColourField = 1u << 21,
+  kSurfaceTension = 1u << 22,
 };
 
 }  // namespace sph::term_bits
