@@ -56,7 +56,7 @@ def make_run(case, scratch, sph):
         case_file = os.path.join(ROOT, "cases", case + ".case")
         if not os.path.isfile(case_file):
             return None
-        cmd = [sph, "run", case_file, "--output", out, "--end_time", "0.002",
+        cmd = [sph, "run", case_file, "--output", out, "--end_time", "0.002", "--overwrite",
                "--no-progress"]
         r = subprocess.run(cmd, stdout=subprocess.DEVNULL)
         if r.returncode != 0:

@@ -60,6 +60,7 @@ void validateCase(const CaseConfig& c) {
   if (c.eos == "tait") requirePositive("c0", c.c0);
   validateWallsAndDensity(c);
   validateTension(c);
+  validateProbes(c);
   if (c.name.empty() || c.name == "." || c.name == ".." ||
       c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
     throw CaseError("name = \"" + c.name + "\" is not allowed: use letters, digits, '_', '-' and '.' (not . or ..)");
@@ -98,39 +99,7 @@ void validateCase(const CaseConfig& c) {
       throw CaseError("h = " + fmt(c.h) + " is out of range for this domain: the domain is " + fmt(extent) +
                       " m wide, more than " + fmt(kMaxCellsPerAxis) + " h (raise h or shrink the domain)");
   }
-  requireSize("block_min", c.blockMin, D, true);
-  requireSize("block_max", c.blockMax, D, true);
-  requireSize("disc_center", c.discCenter, D, true);
-  requireSize("velocity", c.velocity, D, true);
-  if (c.blockMin.empty() != c.blockMax.empty())
-    throw CaseError("block_min and block_max go together: give both or neither");
-  if (!c.blockMin.empty())
-    for (int d = 0; d < D; ++d)
-      if (!(c.blockMax[static_cast<std::size_t>(d)] > c.blockMin[static_cast<std::size_t>(d)]))
-        throw CaseError("block_max must exceed block_min in every dimension");
-  if (c.discCenter.empty() != (c.discRadius == 0))
-    throw CaseError("disc_center and disc_radius go together: give both or neither");
-  if (!c.discCenter.empty()) requirePositive("disc_radius", c.discRadius);
-  if ((!c.blockMin.empty() || !c.discCenter.empty())) requirePositive("spacing", c.spacing);
-  if (c.points.size() % static_cast<std::size_t>(D) != 0)
-    throw CaseError("points has " + std::to_string(c.points.size()) +
-                    " values: it needs a multiple of " + std::to_string(D) + " (x y" +
-                    (D == 3 ? " z" : "") + " per point)");
-  // Generated particle count, before anything is allocated: indices are
-  // 32-bit and memory is finite.
-  double count = static_cast<double>(c.points.size() / static_cast<std::size_t>(D));
-  const char* countKey = "points";
-  if (!c.blockMin.empty()) {
-    double block = 1;
-    for (int d = 0; d < D; ++d)
-      block *= std::round((c.blockMax[static_cast<std::size_t>(d)] - c.blockMin[static_cast<std::size_t>(d)]) / c.spacing);
-    count += block, countKey = "spacing";
-  }
-  if (!c.discCenter.empty()) count += std::pow(2 * std::floor(c.discRadius / c.spacing) + 1, D), countKey = "spacing";
-  for (long n : c.starParticles) count += static_cast<double>(n), countKey = "star_particles";
-  if (count > kMaxParticles)
-    throw CaseError(std::string(countKey) + " gives about " + fmt(count) + " particles: at most " +
-                    fmt(kMaxParticles) + " are allowed");
+  validateBodies(c);
 }
 
 int requestedThreads(const CaseConfig& c) {
@@ -190,6 +159,8 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
     for (const char* key : {"block_min", "block_max", "disc_center", "disc_radius", "points", "velocity"})
       note(key, "particle_file " + c.particleFile + " replaces the generators");
   if (c.cfl == 0) note("cfl", "cfl = 0 is a fixed time step");
+  if (c.probePoints.empty() && c.heightProbes.empty() && !c.frontProbe)
+    note("probe_interval", "there are no probes (probe_points, height_probes, front_probe)");
   if (c.outputInterval > 0) note("output_every", "output_interval is used");
   else note("output_interval", "output_interval is off; output_every is used");
   return unused;

@@ -36,6 +36,7 @@ std::vector<std::string> negativePressureNames() { return {"none", "clamp"}; }
 std::vector<std::string> densityReinitNames() { return methodNames(densityReinitMethods()); }
 std::vector<std::string> gradientCorrectionNames() { return methodNames(gradientCorrectionMethods()); }
 std::vector<std::string> surfaceTensionNames() { return {"none", "morris", "muller"}; }
+std::vector<std::string> regimeCheckNames() { return {"stop", "warn", "off"}; }
 
 std::string fmt(double x) {
   std::ostringstream s;
@@ -87,13 +88,25 @@ const std::vector<KeySpec>& caseKeys() {
        "Upper corner of the domain box (D values; more than 2h above domain_min)", coordinate(), nullptr, nullptr},
       {"walls", G::kScene, &C::walls, "", "The domain box has walls (--no-walls: none); boundary says how they act", {},
        nullptr, nullptr},
-      {"block_min", G::kScene, &C::blockMin, "m", "Lattice block of fluid: lower corner (D values)", coordinate(),
-       "none", nullptr},
-      {"block_max", G::kScene, &C::blockMax, "m", "Lattice block of fluid: upper corner (D values)", coordinate(),
-       "none", nullptr},
-      {"disc_center", G::kScene, &C::discCenter, "m", "Lattice disc (2D) or ball (3D) of fluid: centre (D values)",
+      {"periodic", G::kScene, &C::periodic, "",
+       "Periodic axes of the domain box, as letters: \"x\", \"xy\", \"xz\", \"xyz\", ... (no walls on those faces; "
+       "each periodic extent at least 2 kernel supports)",
+       {}, "none", nullptr},
+      {"block_min", G::kScene, &C::blockMin, "m",
+       "Lattice blocks of fluid: lower corners, D values per block (any number of blocks)", coordinate(), "none",
+       nullptr},
+      {"block_max", G::kScene, &C::blockMax, "m", "Lattice blocks of fluid: upper corners, D values per block",
        coordinate(), "none", nullptr},
-      {"disc_radius", G::kScene, &C::discRadius, "m", "Disc or ball radius", within(0, 1e9), "none", nullptr},
+      {"block_velocity", G::kScene, &C::blockVelocity, "m/s",
+       "Initial velocity of each block, D values per block (instead of velocity)", within(-1e6, 1e6), "velocity",
+       nullptr},
+      {"disc_center", G::kScene, &C::discCenter, "m",
+       "Lattice discs (2D) or balls (3D) of fluid: centres, D values per disc", coordinate(), "none", nullptr},
+      {"disc_radius", G::kScene, &C::discRadius, "m", "Disc or ball radii, one per disc", above(0, 1e9), "none",
+       nullptr},
+      {"disc_velocity", G::kScene, &C::discVelocity, "m/s",
+       "Initial velocity of each disc, D values per disc (instead of velocity)", within(-1e6, 1e6), "velocity",
+       nullptr},
       {"spacing", G::kScene, &C::spacing, "m", "Lattice spacing dx of blocks and discs", within(0, 1e9), "none",
        nullptr},
       {"velocity", G::kScene, &C::velocity, "m/s", "Initial velocity of generated particles (D values)",
@@ -219,6 +232,10 @@ const std::vector<KeySpec>& caseKeys() {
        "Kernel gradient correction (model wcsph): none, or cspm (L_i grad W, exact for linear fields, in the "
        "pressure gradient and the continuity velocity divergence)",
        {}, nullptr, gradientCorrectionNames},
+      {"regime_check", G::kNumerics, &C::regimeCheck, "",
+       "Every 10 steps: Mach number above 1, the fluid breaking up (over half its particles alone), particles "
+       "collapsing (4x the neighbours), pairing (a warning): stop the run naming the cause, only warn, or off",
+       {}, nullptr, regimeCheckNames},
       {"threads", G::kNumerics, &C::threads, "",
        "OpenMP threads: a count from 1 to 1024 (OMP_NUM_THREADS is obeyed too), or auto: start from the cores "
        "this process may use and the load, and keep the faster of that and fewer threads, timed during the run",
@@ -233,6 +250,20 @@ const std::vector<KeySpec>& caseKeys() {
       {"output_interval", G::kOutput, &C::outputInterval, "s",
        "A snapshot every this many seconds of simulated time, and at the end (instead of output_every)",
        within(0, 1e12), "off", nullptr},
+      {"probe_points", G::kOutput, &C::probePoints, "m",
+       "Point probes: pressure, density and velocity interpolated there (Shepard-normalised SPH), D values per "
+       "probe, into probes.csv",
+       coordinate(), "none", nullptr},
+      {"probe_names", G::kOutput, &C::probeNames, "", "Names of the point probes, comma-separated (\"gauge_a, gauge_b\")",
+       {}, "p1, p2, ...", nullptr},
+      {"height_probes", G::kOutput, &C::heightProbes, "m",
+       "Water-height gauges: the horizontal position of each (x in 2D, x y in 3D), into heights.csv",
+       coordinate(), "none", nullptr},
+      {"front_probe", G::kOutput, &C::frontProbe, "", "Write the surge front's x (furthest fluid particle + dx/2) into front.csv",
+       {}, nullptr, nullptr},
+      {"probe_interval", G::kOutput, &C::probeInterval, "s",
+       "Probes are sampled every this many seconds of simulated time (0: every step)", within(0, 1e12), "0: every step",
+       nullptr},
       {"progress", G::kOutput, &C::progress, "",
        "Progress: a live line on a terminal, a line every few seconds otherwise (--no-progress: none)", {},
        nullptr, nullptr},

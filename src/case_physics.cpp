@@ -3,14 +3,76 @@
 // kernel support.
 #include "sph/case_config.hpp"
 
+#include "sph/methods.hpp"
 #include "sph/wall_particles.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace sph {
+namespace {
+
+std::string number(Real x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+// The largest interaction distance of the case's model: the seed's h, or
+// the kernel's support.
+Real interactionRadius(const CaseConfig& c) {
+  if (c.model == "seed_wcsph") return c.h;
+  const auto* row = findMethod(kernelMethods<2>(), c.kernel.empty() ? "cubic_spline" : c.kernel);
+  return row ? std::visit([](const auto& k) { return k.support(); }, row->make(c)) : c.h;
+}
+
+// periodic: letters of distinct axes of the case's dimension; each periodic
+// extent at least two supports (the minimum image is then the only image in
+// range); wall particles need a whole number of spacings along it (the wall
+// lattice must join up across the faces), and no lid on a periodic top.
+void validatePeriodic(const CaseConfig& c) {
+  if (c.periodic.empty() || c.periodic == "none") return;
+  const std::string axes = c.dimension == 3 ? "xyz" : "xy";
+  unsigned seen = 0;
+  for (char ch : c.periodic) {
+    const std::size_t a = axes.find(ch);
+    if (a == std::string::npos || ((seen >> a) & 1u))
+      throw CaseError("periodic = \"" + c.periodic + "\" is not allowed: give each periodic axis once, as letters " +
+                      "of \"" + axes + "\" (for example \"x\"), or \"none\"");
+    seen |= 1u << a;
+  }
+  const Real support = interactionRadius(c);
+  const bool particleWalls = c.walls && c.boundary != "reflecting";
+  for (std::size_t a = 0; a < axes.size() && a < c.domainMin.size() && a < c.domainMax.size(); ++a) {
+    if (!((seen >> a) & 1u)) continue;
+    const Real L = c.domainMax[a] - c.domainMin[a];
+    if (!(L >= 2 * support))
+      throw CaseError("periodic = \"" + c.periodic + "\": the domain is " + number(L) + " m along " + axes[a] +
+                      ", less than 2 kernel supports (2 x " + number(support) +
+                      " m); widen domain_min/domain_max along it or lower h");
+    if (particleWalls && c.spacing > 0 && std::abs(L / c.spacing - std::round(L / c.spacing)) > 1e-6)
+      throw CaseError("periodic = \"" + c.periodic + "\": the domain length along " + axes[a] + " (" + number(L) +
+                      " m) is not a whole number of spacings (" + number(c.spacing) +
+                      " m): the wall particles would not join up across the periodic faces");
+    if (c.lid && static_cast<int>(a) == c.dimension - 1)
+      throw CaseError("lid = true puts walls on the top face, but the vertical axis is periodic (periodic = \"" +
+                      c.periodic + "\")");
+  }
+}
+
+}  // namespace
+
+unsigned periodicAxes(const CaseConfig& c) {
+  unsigned bits = 0;
+  if (c.periodic == "none") return 0;
+  for (char ch : c.periodic)
+    if (ch >= 'x' && ch <= 'z') bits |= 1u << (ch - 'x');
+  return bits;
+}
 
 void validateWallsAndDensity(const CaseConfig& c) {
+  validatePeriodic(c);
   const bool seed = c.model == "seed_wcsph";
   const bool particleWalls = c.walls && c.boundary != "reflecting";
   if (seed) {
@@ -49,9 +111,9 @@ void validateWallsAndDensity(const CaseConfig& c) {
       if (a < c.domainMin[d] || b > c.domainMax[d])
         throw CaseError("obstacle " + std::to_string(k / D + 1) + " reaches outside the domain [domain_min, domain_max]");
     }
-  if (c.hydrostaticStart && c.blockMax.empty())
-    throw CaseError("hydrostatic_start needs a fluid block (block_min/block_max): the top of the block is the "
-                    "free surface the hydrostatic pressure starts from");
+  if (c.hydrostaticStart && c.blockMax.empty() && c.discRadius.empty())
+    throw CaseError("hydrostatic_start needs a fluid block or disc (block_min/block_max, disc_center/disc_radius): "
+                    "the top of each body is the free surface its hydrostatic pressure starts from");
   if (particleWalls && c.boundary != "repulsive") {
     const int needed = wallLayersNeeded(c);
     if (c.wallLayers > 0 && c.wallLayers < needed && !c.wallLayersOverride)

@@ -9,6 +9,7 @@
 #include "sph/case_keys.hpp"
 #include "sph/io/run_folder.hpp"
 #include "sph/run_case.hpp"
+#include "sph/study.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -25,6 +26,7 @@ namespace {
 const char* kTopHelp =
     "sph: Smoothed-Particle Hydrodynamics for ParaView workflows.\n"
     "Usage: sph run CASE_FILE [--output DIR] [--KEY VALUE ...]\n"
+    "       sph study STUDY_FILE [--output DIR] [--jobs N] [--tolerance X]\n"
     "Every key of a case file is also a flag that overrides it.";
 
 // One CLI11 option per row of the key table (case_keys.hpp), in its topic
@@ -243,6 +245,42 @@ int runCommand(int argc, char** argv) {
   return fail("dimension = " + std::to_string(c.dimension) + " is out of range: it must be 2 or 3");
 }
 
+// `sph study STUDY_FILE [--output DIR] [--jobs N] [--tolerance X]`: a
+// matrix of child `sph run`s (sph/study.hpp).
+int studyCommand(int argc, char** argv) {
+  CLI::App app("Run a study: reference cases x methods x resolutions, each a child 'sph run', then measure "
+               "every run's error and cost (study.csv, a chart per case, report.md).",
+               "sph study");
+  std::string file, output;
+  int jobs = 1;
+  double tolerance = 0;
+  app.add_option("study_file", file, "Study file (see studies/)")->required();
+  app.add_option("--output", output, "Study folder [default runs/study_<name>]");
+  app.add_option("--jobs", jobs, "Runs at once [1 to 64; default 1]")->check(CLI::Range(1, 64));
+  app.add_option("--tolerance", tolerance, "Error the report asks for, replacing the study file's [> 0]")
+      ->check(CLI::PositiveNumber);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    if (what.find("study_file is required") != std::string::npos)
+      what = "sph study needs a study file: sph study STUDY_FILE [--output DIR] [--jobs N] [--tolerance X]";
+    return fail(what);
+  }
+  try {
+    const sph::Study s = sph::readStudyFile(file);
+    sph::StudyOptions o;
+    o.output = output;
+    o.jobs = jobs;
+    if (app.count("--tolerance")) o.tolerance = tolerance;
+    return sph::runStudy(s, o, std::cout, std::cerr);
+  } catch (const sph::CaseError& e) {
+    return fail(e.what());
+  }
+}
+
 std::string runHelp() {
   sph::CaseConfig c;
   CLI::App run("Run a case file. Every key of the case file is also a flag that overrides it.",
@@ -264,7 +302,7 @@ int missingSubcommand(int argc, char** argv) {
     }
     return fail("missing subcommand: did you mean '" + command + "'?");
   }
-  return fail("unknown subcommand '" + first + "': the subcommand is 'run': " +
+  return fail("unknown subcommand '" + first + "': the subcommands are 'run' and 'study': " +
               "sph run CASE_FILE [--output DIR] [--KEY VALUE ...] ('sph --help' lists the keys)");
 }
 
@@ -272,6 +310,7 @@ int missingSubcommand(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "run") return runCommand(argc - 1, argv + 1);
+  if (argc >= 2 && std::string(argv[1]) == "study") return studyCommand(argc - 1, argv + 1);
   if (argc >= 2 && argv[1][0] != '-') return missingSubcommand(argc, argv);
   CLI::App app(kTopHelp, "sph");
   app.set_version_flag("--version", std::string("sph ") + SPH_VERSION);

@@ -207,8 +207,22 @@ template <int D>
 void addGenerated(InitialState<D>& s, const CaseConfig& c, const Vec<D>& v0) {
   Particles<D>& P = s.particles;
   if (c.starMass != 0) addStars(s, c);
-  if (!c.blockMin.empty()) addBlock(P, toVec<D>(c.blockMin), toVec<D>(c.blockMax), c.spacing, v0);
-  if (!c.discCenter.empty()) addDisc(P, toVec<D>(c.discCenter), c.discRadius, c.spacing, v0);
+  // Each body with its own velocity (block_velocity, disc_velocity) or v0;
+  // `surface` records each generated particle's free-surface height (the
+  // top of its body) for the hydrostatic start.
+  auto vecAt = [](const std::vector<Real>& v, std::size_t k) {
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = v[k * D + static_cast<std::size_t>(d)];
+    return x;
+  };
+  for (std::size_t k = 0; k < c.blockMin.size() / D; ++k) {
+    addBlock(P, vecAt(c.blockMin, k), vecAt(c.blockMax, k), c.spacing, c.blockVelocity.empty() ? v0 : vecAt(c.blockVelocity, k));
+    s.surface.resize(P.x.size(), c.blockMax[k * D + D - 1]);
+  }
+  for (std::size_t k = 0; k < c.discRadius.size(); ++k) {
+    addDisc(P, vecAt(c.discCenter, k), c.discRadius[k], c.spacing, c.discVelocity.empty() ? v0 : vecAt(c.discVelocity, k));
+    s.surface.resize(P.x.size(), c.discCenter[k * D + D - 1] + c.discRadius[k]);
+  }
   for (std::size_t k = 0; k + D <= c.points.size(); k += D) {
     Vec<D> x;
     for (int d = 0; d < D; ++d) x[d] = c.points[k + static_cast<std::size_t>(d)];
@@ -274,7 +288,7 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   }
   P.resize(P.x.size(), nFluid);
   // Density: rho0, or the hydrostatic balance p = rho0 g (H - y) with H the
-  // top of the fluid block. The lattice stays as it is and the masses carry
+  // top of the particle's own block or disc (explicit points: p = 0). The lattice stays as it is and the masses carry
   // the compression (m = rho dx^D), so that every particle's volume m/rho is
   // still dx^D: the state is in balance as it starts, with nothing to settle
   // (compressing densities alone would leave the pressure gradient short by
@@ -300,9 +314,11 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   if (wcsph && c.hydrostaticStart) {
     const CaseConfig resolved = withDefaults(c);
     const EquationOfState eos = findMethod(eosMethods(), resolved.eos)->make(resolved);
-    const Real H = c.blockMax[static_cast<std::size_t>(D - 1)];
+    // Wall particles take the highest body's surface.
+    const Real top = s.surface.empty() ? 0 : *std::max_element(s.surface.begin(), s.surface.end());
     const bool dummyWalls = c.boundary == "dummy";
     for (std::size_t i = 0; i < P.size(); ++i) {
+      const Real H = i < s.surface.size() ? s.surface[i] : (i < nFluid ? P.x[i][D - 1] : top);
       const Real p = std::max(Real(0), c.rho0 * c.g * (H - P.x[i][D - 1]));
       P.rho[i] = std::visit([&](const auto& e) { return e.density(p); }, eos);
       if (i < nFluid || !dummyWalls) P.m[i] *= P.rho[i] / c.rho0;

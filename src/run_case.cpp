@@ -7,11 +7,13 @@
 #include "sph/case_keys.hpp"
 #include "sph/io/atomic_file.hpp"
 #include "sph/io/number_format.hpp"
+#include "sph/io/probe_files.hpp"
 #include "sph/io/pvd_series.hpp"
 #include "sph/io/run_folder.hpp"
 #include "sph/io/vtp_io.hpp"
 #include "sph/model_registry.hpp"
 #include "sph/particle_sources.hpp"
+#include "sph/regime_check.hpp"
 #include "sph/run_signals.hpp"
 #include "sph/scene.hpp"
 #include "sph/thread_tuner.hpp"
@@ -19,6 +21,7 @@
 #include "sph/version.hpp"
 
 #include <omp.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -78,9 +81,9 @@ template <int D>
 class RunOutput {
  public:
   RunOutput(const std::filesystem::path& dir, const std::string& name, SnapshotInfo info, RunRecord& record,
-            bool adaptive)
+            bool adaptive, ProbeFiles<D> probes)
       : dir_(dir), name_(name), info_(info), series_((dir / (name + ".pvd")).string()), record_(record),
-        adaptive_(adaptive) {
+        adaptive_(adaptive), probes_(std::move(probes)) {
     energy_ = "time,kinetic,potential,total\n";
     if (adaptive_) dtLog_ = "step,time,dt,criterion\n";
   }
@@ -97,6 +100,9 @@ class RunOutput {
       dtLog_ = csvLinesWhere(dir_ / "timestep.csv", [&](double s) { return s <= static_cast<double>(step); });
       if (dtLog_.empty()) dtLog_ = "step,time,dt,criterion\n";
     }
+    probes_.resume(time, [&](const char* file) {
+      return csvLinesWhere(dir_ / file, [&](double t) { return t <= time * (1 + 1e-12); });
+    });
   }
 
   void write(const Scene<D>& scene) {
@@ -116,12 +122,22 @@ class RunOutput {
     energy_ += line;
     writeFileAtomically((dir_ / "energy.csv").string(), energy_);
     record_.addFile("energy.csv");
+    if (count_ == 0 && lastStep_ < 0) sampleProbes(scene);
+    for (const auto& f : probes_.files()) {
+      writeFileAtomically((dir_ / f.name).string(), *f.text);
+      record_.addFile(f.name);
+    }
     flushTimeSteps();
     ++count_;
     lastStep_ = scene.stepIndex();
     lastTime_ = scene.time();
     record_.snapshots = count_;
     record_.lastSnapshot = vtp;
+  }
+
+  // Probes after a step (when one is due).
+  void sampleProbes(const Scene<D>& scene) {
+    if (probes_.any()) probes_.sample(scene.particles(), scene.time(), shortestDecimal(scene.time()));
   }
 
   void addTimeStep(const Scene<D>& scene) {
@@ -151,6 +167,7 @@ class RunOutput {
   PvdSeries series_;
   RunRecord& record_;
   bool adaptive_;
+  ProbeFiles<D> probes_;
   std::string energy_, dtLog_;
   long count_ = 0;
   long lastStep_ = -1;
@@ -281,7 +298,9 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   for (const std::string& note : unusedKeyNotes(c)) err << "sph: warning: " << escapeControl(note) << "\n";
 
   const std::size_t n = init.particles.size();
-  const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
+  Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
+  for (int d = 0; d < D; ++d)  // periodic faces have no wall
+    if ((periodicAxes(c) >> d) & 1u) lo[d] = -std::numeric_limits<Real>::infinity(), hi[d] = -lo[d];
   std::size_t nearWall = 0;
   if (c.walls && c.boundary == "reflecting" && !resuming)
     for (const auto& x : init.particles.x)
@@ -371,7 +390,11 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   }
   if (c.walls) info.domainMin = c.domainMin, info.domainMax = c.domainMax;
   const bool adaptive = c.cfl > 0;
-  RunOutput<D> output(dir, c.name, info, record, adaptive);
+  // Probes interpolate with the case's kernel; the seed model's kernels are
+  // its own, so there a Wendland C2 with the seed's support h stands in.
+  CaseConfig probeKernel = c;
+  if (probeKernel.kernel.empty()) probeKernel.kernel = "wendland_c2", probeKernel.h = c.h / 2;
+  RunOutput<D> output(dir, c.name, info, record, adaptive, ProbeFiles<D>(c, makeKernel<D>(probeKernel)));
   if (resuming) output.resumeAfter(resumeStep, resumeTime);
 
   // Steps of a fixed-dt run: ceil((end - start) / dt), counted from the start.
@@ -392,6 +415,16 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   };
   Real nextOutput = byInterval ? outputTime(outputIndex(scene.time()) + 1) : std::numeric_limits<Real>::infinity();
 
+  // The regime check's sound speed: the EOS's at rho0 (the seed's p =
+  // k (rho - rho0): sqrt(k)); none for the polytropic toy stars.
+  Real soundSpeed = 0;
+  if (c.model == "seed_wcsph") soundSpeed = std::sqrt(c.k);
+  else if (c.eos != "polytropic")
+    soundSpeed = std::visit([&](const auto& e) { return e.soundSpeed(c.rho0); }, makeEos(c));
+  RegimeCheck regime(soundSpeed, c.spacing, scene.particles().fluidCount());
+  const bool regimeOn = c.regimeCheck != "off";
+  if (regimeOn) regime.start(measureRegime(scene.particles(), scene.neighbours(), soundSpeed, c.spacing));
+
   const bool terminal = isatty(STDERR_FILENO);
   const bool showLiveLine = c.progress && terminal;
   const double progressEvery = terminal ? 0.25 : 10.0;
@@ -402,6 +435,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   TimeStepStats dtStats;
   const long firstStep = scene.stepIndex();
   int status = kSuccess;
+  bool regimeWarned = false;
   auto saveRecord = [&] {
     record.simulatedTime = scene.time();
     record.step = scene.stepIndex();
@@ -412,6 +446,13 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       if (std::find(record.threadsUsed.begin(), record.threadsUsed.end(), t) == record.threadsUsed.end())
         record.threadsUsed.push_back(t);
     for (const auto& [t, seconds] : tuner.secondsWith()) record.threadSeconds[t] += seconds;
+    // CPU time and peak memory of this process (a resume adds its own).
+    rusage usage{};
+    if (::getrusage(RUSAGE_SELF, &usage) == 0) {
+      auto seconds = [](const timeval& tv) { return static_cast<double>(tv.tv_sec) + 1e-6 * static_cast<double>(tv.tv_usec); };
+      record.cpuSeconds = previous.cpuSeconds + seconds(usage.ru_utime) + seconds(usage.ru_stime);
+      record.peakMemoryBytes = std::max(previous.peakMemoryBytes, 1024.0 * static_cast<double>(usage.ru_maxrss));
+    }
     record.addFile("run.json");
     record.addFile("run.case");
     writeRunRecord(dir, record);
@@ -432,6 +473,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       tuner.record(dtWall);
       dtStats.add(scene.lastTimeStep());
       output.addTimeStep(scene);
+      if (!failure) output.sampleProbes(scene);
       if (failure) {
         if (showLiveLine) err << "\n";
         const std::string message = failureMessage(*failure, scene.stepIndex(), scene.time());
@@ -442,6 +484,32 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         record.message = message;
         status = kBlewUp;
         break;
+      }
+      // Still physics? Every 10 steps (regime_check.hpp).
+      if (regimeOn && scene.stepIndex() % 10 == 0) {
+        const auto verdict = regime.judge(measureRegime(scene.particles(), scene.neighbours(), soundSpeed, c.spacing),
+                                          scene.lastTimeStep().dt, c.h);
+        if (!verdict.warning.empty()) {
+          if (showLiveLine) err << "\n";
+          err << "sph: warning: at step " << scene.stepIndex() << ", t = " << shortestDecimal(scene.time()) << " s: " << verdict.warning << "\n";
+        }
+        if (!verdict.stop.empty()) {
+          if (showLiveLine) err << "\n";
+          const std::string message = "the run left its regime at step " + std::to_string(scene.stepIndex()) +
+                                      ", t = " + shortestDecimal(scene.time()) + " s: " + verdict.stop;
+          if (c.regimeCheck == "stop") {
+            err << "sph: error: " << message << "\nsph: the outputs up to step " << output.lastStep()
+                << " (t = " << output.lastTime() << " s) are intact in " << output.seriesPath()
+                << " (regime_check = \"warn\" lets such a run go on)\n";
+            output.flushTimeSteps();
+            record.status = "blew_up";
+            record.message = message;
+            status = kBlewUp;
+            break;
+          }
+          if (!regimeWarned) err << "sph: warning: " << message << "\n";
+          regimeWarned = true;
+        }
       }
       // An adaptive dt that no longer lets the run end stops it, named.
       if (adaptive && !finished() && (c.endTime - scene.time()) / scene.lastTimeStep().dt > kMaxSteps) {

@@ -70,6 +70,8 @@ void writeRunRecord(const std::filesystem::path& dir, const RunRecord& r) {
                   {"particle_steps_per_second", r.particleStepsPerSecond},
                   {"neighbours_per_particle", r.neighboursPerParticle},
                   {"bytes_per_particle", r.bytesPerParticle},
+                  {"cpu_seconds", r.cpuSeconds},
+                  {"peak_memory_bytes", r.peakMemoryBytes},
                   {"dt_min_s", r.dtMin},
                   {"dt_max_s", r.dtMax},
                   {"dt_limited_by", r.dtLimitedBy},
@@ -117,6 +119,8 @@ RunRecord readRunRecord(const std::filesystem::path& dir) {
     r.particleStepsPerSecond = s.at("particle_steps_per_second").get<double>();
     r.neighboursPerParticle = s.at("neighbours_per_particle").get<double>();
     r.bytesPerParticle = s.at("bytes_per_particle").get<double>();
+    r.cpuSeconds = s.value("cpu_seconds", 0.0);  // absent in records of older sph
+    r.peakMemoryBytes = s.value("peak_memory_bytes", 0.0);
     r.dtMin = s.at("dt_min_s").get<double>();
     r.dtMax = s.at("dt_max_s").get<double>();
     r.dtLimitedBy = s.at("dt_limited_by").get<std::string>();

@@ -70,11 +70,15 @@ std::vector<Vec<D>> wallParticlePositions(const CaseConfig& c, int layers) {
   const bool repulsive = c.boundary == "repulsive";
   const Real dx = c.spacing;
   {
+    // No walls on periodic faces: along a periodic axis the lattice is the
+    // box's own, [lo, hi) (repulsive walls: their points less the one on hi).
+    const unsigned periodic = periodicAxes(c);
     AxisLattice axes[D];
     for (int d = 0; d < D; ++d) {
-      const bool top = d == D - 1;
+      const bool top = d == D - 1, wrap = (periodic >> d) & 1u;
       axes[d] = axis(c.domainMin[static_cast<std::size_t>(d)], c.domainMax[static_cast<std::size_t>(d)], dx, layers,
-                     true, !top || c.lid, repulsive);
+                     !wrap, (!top || c.lid) && !wrap, repulsive);
+      if (wrap && repulsive) axes[d].coords.pop_back(), axes[d].inside.pop_back();
     }
     addShell<D>(out, axes);
   }

@@ -135,18 +135,9 @@ BOOST_AUTO_TEST_CASE(momentum_is_conserved_with_continuity_and_diffusion) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<Real> u(-1, 1);
   for (auto& v : s.particles().v) v = Vec<2>(u(rng), u(rng));
-  auto momentum = [&] {
-    Vec<2> p = Vec<2>::Zero();
-    Real scale = 0;
-    for (std::size_t i = 0; i < s.particles().size(); ++i) {
-      p += s.particles().m[i] * s.particles().v[i];
-      scale += s.particles().m[i] * s.particles().v[i].norm();
-    }
-    return std::make_pair(p, scale);
-  };
-  const auto [p0, scale] = momentum();
+  const auto [p0, scale] = test::momentum(s.particles());
   for (int n = 0; n < 100; ++n) BOOST_REQUIRE(!s.step());
-  BOOST_TEST((momentum().first - p0).norm() < 1e-12 * scale);
+  BOOST_TEST((test::momentum(s.particles()).first - p0).norm() < 1e-12 * scale);
 }
 
 BOOST_AUTO_TEST_CASE(tait_by_multiplication_equals_pow_and_every_eos_inverts) {

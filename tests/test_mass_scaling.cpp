@@ -33,7 +33,7 @@ BOOST_AUTO_TEST_CASE(mean_density_equals_rho0_for_a_block) {
 BOOST_AUTO_TEST_CASE(mean_density_equals_rho0_for_a_disc_and_in_3d) {
   CaseConfig c;
   c.discCenter = {0.2, 0.5};
-  c.discRadius = 0.1;
+  c.discRadius = {0.1};
   c.spacing = 0.0075;
   auto disc = buildInitialState<2>(c);
   SeedWcsphParameters prm;
@@ -47,7 +47,7 @@ BOOST_AUTO_TEST_CASE(mean_density_equals_rho0_for_a_disc_and_in_3d) {
   c.domainMin = {0, 0, 0};
   c.domainMax = {1, 1, 1};
   c.discCenter = {0.5, 0.5, 0.5};
-  c.discRadius = 0.05;
+  c.discRadius = {0.05};
   auto ball = buildInitialState<3>(c);
   auto s3 = test::makeScene<3>(ball.particles.x, {}, prm, true, 1e-4);
   sum = 0;

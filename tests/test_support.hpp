@@ -82,6 +82,19 @@ inline Result runSph(const std::vector<std::string>& args) {
   return r;
 }
 
+// Total momentum sum m v of the particles, and sum m |v| (the scale its
+// round-off is measured against).
+template <int D>
+std::pair<Vec<D>, Real> momentum(const Particles<D>& P) {
+  Vec<D> p = Vec<D>::Zero();
+  Real scale = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    p += P.m[i] * P.v[i];
+    scale += P.m[i] * P.v[i].norm();
+  }
+  return {p, scale};
+}
+
 inline std::string caseFile(const std::string& name) {
   return std::string(SPH_SOURCE_DIR) + "/cases/" + name + ".case";
 }

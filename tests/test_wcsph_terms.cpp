@@ -108,19 +108,10 @@ BOOST_AUTO_TEST_CASE(momentum_is_conserved_for_every_kernel_and_viscosity) {
       std::mt19937 rng(1);
       std::uniform_real_distribution<Real> u(-1, 1);
       for (auto& v : s.particles().v) v = Vec<2>(u(rng), u(rng));
-      auto momentum = [&] {
-        Vec<2> p = Vec<2>::Zero();
-        Real scale = 0;
-        for (std::size_t i = 0; i < s.particles().size(); ++i) {
-          p += s.particles().m[i] * s.particles().v[i];
-          scale += s.particles().m[i] * s.particles().v[i].norm();
-        }
-        return std::make_pair(p, scale);
-      };
-      const auto [p0, scale] = momentum();
+      const auto [p0, scale] = test::momentum(s.particles());
       for (int n = 0; n < 100; ++n) BOOST_REQUIRE(!s.step());
       BOOST_TEST_CONTEXT(kernel << " + " << viscosity) {
-        BOOST_TEST((momentum().first - p0).norm() < 1e-12 * scale);
+        BOOST_TEST((test::momentum(s.particles()).first - p0).norm() < 1e-12 * scale);
       }
     }
 }

@@ -38,6 +38,7 @@ struct CaseConfig {
   Real g = 9.81;
   Real restitution = 0.5;
   bool walls = true;        // the domain box has walls
+  std::string periodic;     // periodic axes of the domain box: "x", "xy", "xz", ... ("" or "none": none)
 
   // walls and density (model wcsph)
   std::string boundary = "reflecting";  // reflecting | dummy | dynamic | repulsive
@@ -91,15 +92,28 @@ struct CaseConfig {
   long outputEvery = 100;
   Real outputInterval = 0;  // > 0: a snapshot every this many seconds of simulated time
 
+  // probes (sph/probes.hpp): sampled during the run into CSV files
+  std::vector<Real> probePoints;   // D values per point probe
+  std::string probeNames;          // "a, b, ...": one name per point probe
+  std::vector<Real> heightProbes;  // D - 1 horizontal coordinates per water-height gauge
+  bool frontProbe = false;         // the surge front's x
+  Real probeInterval = 0;          // seconds of simulated time between samples; 0: every step
+
+  // regime check (sph/regime_check.hpp): stop | warn | off
+  std::string regimeCheck = "stop";
+
   // domain (walls)
   std::vector<Real> domainMin{0, 0};
   std::vector<Real> domainMax{1, 1};
 
   // initial particles: any combination of the generators below
   Real spacing = 0;                  // lattice spacing for block and disc
-  std::vector<Real> blockMin, blockMax;
-  std::vector<Real> discCenter;
-  Real discRadius = 0;
+  // Any number of bodies: D values per block corner, D per disc centre, one
+  // radius per disc; block_velocity / disc_velocity: D per body (empty: all
+  // move with `velocity`).
+  std::vector<Real> blockMin, blockMax, blockVelocity;
+  std::vector<Real> discCenter, discVelocity;
+  std::vector<Real> discRadius;
   std::vector<Real> points;          // x0 y0 [z0] x1 y1 [z1] ...
   std::vector<Real> velocity;        // initial velocity of generated particles
   std::string particleFile;          // .csv (x,y[,z][,vx,vy[,vz]]) or .vtp from sph
@@ -133,6 +147,13 @@ void validateWallsAndDensity(const CaseConfig& c);
 // The artificial-pressure and surface-tension keys (src/case_physics.cpp), part of validateCase.
 void validateTension(const CaseConfig& c);
 
+// The fluid bodies: blocks, discs, their velocities, overlaps and the
+// particle count (src/case_bodies.cpp), part of validateCase.
+void validateBodies(const CaseConfig& c);
+
+// The probe keys (src/case_probes.cpp), part of validateCase.
+void validateProbes(const CaseConfig& c);
+
 // The thread count a validated `threads` key asks for (0: auto).
 int requestedThreads(const CaseConfig& c);
 
@@ -142,6 +163,9 @@ int requestedThreads(const CaseConfig& c);
 std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& c);
 // The warnings for the keys among those that the case sets.
 std::vector<std::string> unusedKeyNotes(const CaseConfig& c);
+
+// The periodic axes of a validated case as bits (bit a: axis a).
+unsigned periodicAxes(const CaseConfig& c);
 
 // The first D values of a validated vector key as a Vec<D>.
 template <int D>

@@ -21,12 +21,20 @@
 // the distance test filters the extra candidates, and a bucket shared by two
 // stencil cells is listed only once.
 //
+// Periodic axes (setPeriodic, periodic_box.hpp): along a periodic axis of
+// length L the box holds n = floor(L / cellSize) cells of edge L / n (>= the
+// support), cell coordinates are taken modulo n and the stencil wraps
+// around, so a stencil at one face lists the cells at the opposite face.
+// (With n < 3 two stencil offsets name the same cell; its bucket is listed
+// once, as for any shared bucket.)
+//
 // Kinds: when the particles from index `fluidCount` on are walls, walls get
 // a second table of buckets after the fluid's (bucket + T), so the sort keeps
 // every wall after every fluid particle, and a Stencil lists the fluid
 // ranges and the wall ranges around a cell separately.
 #pragma once
 
+#include "sph/periodic_box.hpp"
 #include "sph/types.hpp"
 
 #include <algorithm>
@@ -51,6 +59,18 @@ class HashGrid {
       for (int d = 0; d < D; ++d, rest /= 3) stencil_[s][d] = rest % 3 - 1;
     }
   }
+
+  // Periodic axes of the domain box (none by default). Call before build().
+  void setPeriodic(const PeriodicBox<D>& box) {
+    box_ = box;
+    for (int d = 0; d < D; ++d) {
+      cells_[d] = 0;
+      if (!box.periodic(d)) continue;
+      cells_[d] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(box.length[d] / cellSize_)));
+      invCellAxis_[d] = static_cast<Real>(cells_[d]) / box.length[d];
+    }
+  }
+  const PeriodicBox<D>& periodicBox() const { return box_; }
 
   // Sort particles by bucket. Afterwards order()[k] is the old index of the
   // particle that goes to position k; apply it with Particles::permute().
@@ -115,12 +135,28 @@ class HashGrid {
   IVec<D> cellOf(const Vec<D>& x) const {
     IVec<D> c;
     for (int d = 0; d < D; ++d) {
-      // floor() without the libm call: truncate, then step down for negatives.
-      const Real s = x[d] * invCell_;
-      const auto t = static_cast<std::int64_t>(s);
-      c[d] = t - (static_cast<Real>(t) > s);
+      if (box_.axes != 0 && box_.periodic(d)) {
+        c[d] = wrapCell(floorToInt((x[d] - box_.lo[d]) * invCellAxis_[d]), d);
+        continue;
+      }
+      c[d] = floorToInt(x[d] * invCell_);
     }
     return c;
+  }
+
+  // floor() without the libm call: truncate, then step down for negatives.
+  static std::int64_t floorToInt(Real s) {
+    const auto t = static_cast<std::int64_t>(s);
+    return t - (static_cast<Real>(t) > s);
+  }
+
+  // A cell coordinate along periodic axis d, taken modulo its cell count
+  // (positions are within a box length of the box, cells within a count).
+  std::int64_t wrapCell(std::int64_t c, int d) const {
+    const std::int64_t n = cells_[d];
+    if (c >= n) c -= n;
+    else if (c < 0) c += n;
+    return c >= 0 && c < n ? c : ((c % n) + n) % n;
   }
 
   void stencilAt(const IVec<D>& c, Stencil& st) const {
@@ -129,7 +165,11 @@ class HashGrid {
     std::uint32_t seen[stencilSize];
     int nSeen = 0;
     for (const IVec<D>& offset : stencil_) {
-      const std::uint32_t b = bucketOf(c + offset);
+      IVec<D> cell = c + offset;
+      if (box_.axes != 0)
+        for (int d = 0; d < D; ++d)
+          if (box_.periodic(d)) cell[d] = wrapCell(cell[d], d);
+      const std::uint32_t b = bucketOf(cell);
       bool dup = false;
       for (int k = 0; k < nSeen; ++k) dup |= seen[k] == b;
       if (!dup) seen[nSeen++] = b;
@@ -174,6 +214,12 @@ class HashGrid {
     std::uint64_t stride = 1;
     for (int d = 0; d < D; ++d) {
       stride_[d] = stride;
+      if (box_.periodic(d)) {
+        // The stencil wraps: the cells 0 ... n-1 and no margin.
+        origin_[d] = 0;
+        stride *= static_cast<std::uint64_t>(cells_[d]);
+        continue;
+      }
       stride *= static_cast<std::uint64_t>(cHi[d] - cLo[d] + 3);
     }
   }
@@ -186,6 +232,9 @@ class HashGrid {
 
   Real cellSize_;
   Real invCell_;
+  PeriodicBox<D> box_;                  // periodic axes (none: axes == 0)
+  std::int64_t cells_[D] = {};          // cells along each periodic axis
+  Real invCellAxis_[D] = {};            // cells / length along each periodic axis
   IVec<D> stencil_[stencilSize];  // cell offsets {-1, 0, 1}^D, x fastest
   IVec<D> origin_ = IVec<D>::Zero();
   std::uint64_t stride_[D] = {};

@@ -78,19 +78,28 @@ template <int D>
 Scene<D> makeScene(const CaseConfig& c, InitialState<D> init,
                    Real startTime = std::numeric_limits<Real>::quiet_NaN()) {
   const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
+  const PeriodicBox<D> periodic{lo, hi - lo, periodicAxes(c)};
   std::optional<DampedReflectingWalls<D>> walls;
+  // Reflecting walls act on the other faces: along a periodic axis their
+  // faces are at infinity.
+  Vec<D> wallLo = lo, wallHi = hi;
+  for (int d = 0; d < D; ++d)
+    if (periodic.periodic(d)) wallLo[d] = -std::numeric_limits<Real>::infinity(), wallHi[d] = std::numeric_limits<Real>::infinity();
   if (c.walls && c.boundary == "reflecting")
-    walls = DampedReflectingWalls<D>{lo, hi, c.h, c.restitution,
+    walls = DampedReflectingWalls<D>{wallLo, wallHi, c.h, c.restitution,
                                      c.model == "seed_wcsph" ? ReflectionRule::kSeed : ReflectionRule::kApproaching};
   if (std::isnan(startTime)) startTime = init.startTime;
   StateCheck<D> check(lo, hi);
   check.wallParticles = c.walls && c.boundary != "reflecting";
   if (check.wallParticles) check.tolerance = c.spacing / 2;
+  check.openTop = check.wallParticles && !c.lid;
   for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D)
     check.obstacles.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
                                toVec<D>({c.obstacleMax.begin() + k, c.obstacleMax.begin() + k + D})});
-  return Scene<D>(std::move(init.particles), makeModel<D>(c), walls, check,
-                  TimeStepControl{c.dt, c.cfl, c.endTime}, startTime, makeIntegrator<D>(c.integrator));
+  Scene<D> scene(std::move(init.particles), makeModel<D>(c), walls, check, TimeStepControl{c.dt, c.cfl, c.endTime},
+                 startTime, makeIntegrator<D>(c.integrator));
+  if (periodic.any()) scene.setPeriodic(periodic);
+  return scene;
 }
 
 }  // namespace sph

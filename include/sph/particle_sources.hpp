@@ -23,6 +23,7 @@ struct InitialState {
   bool massesGiven = false;   // masses came from a .vtp: do not rescale
   Real startTime = 0;         // time stored in a .vtp, else 0
   long startStep = 0;         // step stored in a snapshot (resume)
+  std::vector<Real> surface;  // generated particles: the top of their body (hydrostatic start)
 };
 
 // Builds the initial particles of a validated case; throws CaseError on a

@@ -58,6 +58,13 @@ class Scene {
     P_.allocate(model_.needs() | integratorNeeds);
   }
 
+  // Periodic axes of the domain box; call before initialise() or resume().
+  void setPeriodic(const PeriodicBox<D>& box) {
+    periodic_ = box;
+    grid_.setPeriodic(box);
+  }
+  const PeriodicBox<D>& periodicBox() const { return periodic_; }
+
   // Sort, optionally scale the masses to rho0, and evaluate the model at the
   // initial state. Returns a failure if the initial state is not finite.
   std::optional<StateFailure> initialise(bool scaleMass) {
@@ -123,6 +130,7 @@ class Scene {
   Particles<D>& particles() { return P_; }
   const Model<D>& model() const { return model_; }
   const HashGrid<D>& grid() const { return grid_; }
+  const NeighbourList<D>& neighbours() const { return neighbours_; }
   Real time() const { return time_; }
   long stepIndex() const { return step_; }
   // dt and criterion of the last step (before the first: the fixed dt).
@@ -150,6 +158,11 @@ class Scene {
   }
 
   void sort() {
+    if (periodic_.any()) {
+      const std::size_t n = P_.size();
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
+      for (std::size_t i = 0; i < n; ++i) periodic_.wrap(P_.x[i]);
+    }
     grid_.build(P_.x, P_.fluidCount());
     P_.permute(grid_.order());
     neighbours_.build(grid_, P_.x, model_.support(), P_.fluidCount());
@@ -199,6 +212,7 @@ class Scene {
   std::optional<DampedReflectingWalls<D>> walls_;
   StateCheck<D> check_;
   TimeStepControl timeStep_;
+  PeriodicBox<D> periodic_;
   HashGrid<D> grid_;
   NeighbourList<D> neighbours_;
   Real startTime_;

@@ -29,6 +29,7 @@ struct StateCheck {
 
   Vec<D> lo, hi;
   bool wallParticles = false;  // the box's walls are particles: a fluid particle outside it went through one
+  bool openTop = false;        // ... except the top, which has none (no lid)
   // How far a fluid particle may pass a face of the box (or enter an
   // obstacle) before it counts as leaked: with wall particles dx/2, the
   // distance to the first layer of wall particles, since a particle near
@@ -66,6 +67,10 @@ struct StateCheck {
       f.quantity = "wall";
       f.detail = "fluid particle at " + vecString(P.x[i]) + " is inside an obstacle: it leaked through its wall "
                  "particles (too few wall layers, or too large a dt)";
+    } else if (openTop && P.x[i][D - 1] > hi[D - 1]) {
+      f.quantity = "domain";
+      f.detail = "fluid particle at " + vecString(P.x[i]) + " left the domain through its open top (at " +
+                 std::to_string(hi[D - 1]) + ", no lid): raise domain_max or close the tank with lid = true";
     } else if (wallParticles) {
       f.quantity = "wall";
       f.detail = "fluid particle at " + vecString(P.x[i]) + " is outside the domain " + vecString(lo) + " - " +

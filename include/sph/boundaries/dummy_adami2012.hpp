@@ -18,6 +18,7 @@
 #pragma once
 
 #include "sph/neighbour_list.hpp"
+#include "sph/pair_loop.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/term_bits.hpp"
@@ -30,34 +31,34 @@ namespace sph {
 template <int D, class Kernel, class Eos>
 void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, const Eos& eos,
                         const Vec<D>& bodyAcceleration, bool noSlip, Real rho0) {
-  const std::size_t n = P.size(), nFluid = P.fluidCount();
-  const bool withSoundSpeed = !P.c.empty();
+  neighbours.withSeparation([&](const auto& sep) {
+    const std::size_t n = P.size(), nFluid = P.fluidCount();
+    const bool withSoundSpeed = !P.c.empty();
 #pragma omp parallel for schedule(static) if (n - nFluid >= kMinParallelSize)
-  for (std::size_t w = nFluid; w < n; ++w) {
-    Real sumW = 0, sumPW = 0;
-    Vec<D> sumRhoRW = Vec<D>::Zero(), sumVW = Vec<D>::Zero();
-    const Vec<D> xw = P.x[w];
-    neighbours.forEach(w, [&](std::uint32_t f) {
-      const Vec<D> rwf = xw - P.x[f];
-      const Real W = kernel.W(rwf.norm());
-      sumW += W;
-      sumPW += P.p[f] * W;
-      sumRhoRW += (P.rho[f] * W) * rwf;
-      sumVW += W * P.v[f];
-    });
-    const Vec<D> uw = P.v[w];
-    if (sumW > 0) {
-      P.p[w] = std::max(Real(0), (sumPW + bodyAcceleration.dot(sumRhoRW)) / sumW);
-      P.rho[w] = eos.density(P.p[w]);
-      const Vec<D> vFluid = sumVW / sumW;
-      P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;
-    } else {
-      P.p[w] = 0;
-      P.rho[w] = rho0;
-      P.vWall[w] = uw;
+    for (std::size_t w = nFluid; w < n; ++w) {
+      Real sumW = 0, sumPW = 0;
+      Vec<D> sumRhoRW = Vec<D>::Zero(), sumVW = Vec<D>::Zero();
+      forEachNeighbourSeparation(P, neighbours, w, sep, [&](std::uint32_t f, const Vec<D>& rwf) {
+        const Real W = kernel.W(rwf.norm());
+        sumW += W;
+        sumPW += P.p[f] * W;
+        sumRhoRW += (P.rho[f] * W) * rwf;
+        sumVW += W * P.v[f];
+      });
+      const Vec<D> uw = P.v[w];
+      if (sumW > 0) {
+        P.p[w] = std::max(Real(0), (sumPW + bodyAcceleration.dot(sumRhoRW)) / sumW);
+        P.rho[w] = eos.density(P.p[w]);
+        const Vec<D> vFluid = sumVW / sumW;
+        P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;
+      } else {
+        P.p[w] = 0;
+        P.rho[w] = rho0;
+        P.vWall[w] = uw;
+      }
+      if (withSoundSpeed) P.c[w] = eos.soundSpeed(P.rho[w]);
     }
-    if (withSoundSpeed) P.c[w] = eos.soundSpeed(P.rho[w]);
-  }
+  });
 }
 
 }  // namespace sph

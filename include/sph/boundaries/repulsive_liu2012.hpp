@@ -17,6 +17,7 @@
 #pragma once
 
 #include "sph/neighbour_list.hpp"
+#include "sph/pair_loop.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/term_bits.hpp"
 
@@ -47,19 +48,17 @@ struct RepulsiveWallsPass {
   RepulsiveForce force;
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    const std::size_t nFluid = P.fluidCount();
+    neighbours.withSeparation([&](const auto& sep) {
+      const std::size_t nFluid = P.fluidCount();
 #pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
-    for (std::size_t i = 0; i < nFluid; ++i) {
-      Vec<D> a = Vec<D>::Zero();
-      const Vec<D> xi = P.x[i];
-      neighbours.forEachByKind(
-          i, [](std::uint32_t) {},
-          [&](std::uint32_t j) {
-            const Vec<D> rij = xi - P.x[j];
-            a += force.factor(rij.norm()) * rij;
-          });
-      P.a[i] += a;
-    }
+      for (std::size_t i = 0; i < nFluid; ++i) {
+        Vec<D> a = Vec<D>::Zero();
+        forEachNeighbourSeparationByKind(
+            P, neighbours, i, sep, [](std::uint32_t, const Vec<D>&) {},
+            [&](std::uint32_t, const Vec<D>& rij) { a += force.factor(rij.norm()) * rij; });
+        P.a[i] += a;
+      }
+    });
     return term_bits::kRepulsiveWalls;
   }
 };

@@ -52,6 +52,8 @@ struct RunRecord {
   std::size_t particles = 0, fluidParticles = 0, wallParticles = 0;
   double wallSeconds = 0, steppingSeconds = 0, particleStepsPerSecond = 0;
   double neighboursPerParticle = 0, bytesPerParticle = 0;
+  double cpuSeconds = 0;               // user + system CPU time of the process(es) that ran it (getrusage)
+  double peakMemoryBytes = 0;          // peak resident set size of the process that ran it (getrusage ru_maxrss)
   double dtMin = 0, dtMax = 0;
   std::string dtLimitedBy;             // the criterion that set dt most often
   std::map<std::string, long> dtCriteria;  // criterion -> number of steps it set

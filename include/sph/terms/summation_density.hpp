@@ -8,6 +8,7 @@
 #pragma once
 
 #include "sph/neighbour_list.hpp"
+#include "sph/pair_loop.hpp"
 #include "sph/particles.hpp"
 
 namespace sph {
@@ -17,20 +18,21 @@ namespace sph {
 template <int D, class Kernel, class Eos>
 void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& W,
                              const Eos& eos, bool wallsInSums = true, bool clampNegative = false) {
-  const std::size_t n = P.fluidCount();
-  const bool withSoundSpeed = !P.c.empty();
+  neighbours.withSeparation([&](const auto& sep) {
+    const std::size_t n = P.fluidCount();
+    const bool withSoundSpeed = !P.c.empty();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec<D> xi = P.x[i];
-    Real rho_i = P.m[i] * W.densityAtZero();
-    auto add = [&](std::uint32_t j) { rho_i += P.m[j] * W.density((xi - P.x[j]).squaredNorm()); };
-    if (wallsInSums) neighbours.forEach(i, add);
-    else neighbours.forEachByKind(i, add, [](std::uint32_t) {});
-    P.rho[i] = rho_i;
-    const Real p = eos.pressure(rho_i);
-    P.p[i] = clampNegative ? std::max(p, Real(0)) : p;
-    if (withSoundSpeed) P.c[i] = eos.soundSpeed(rho_i);
-  }
+    for (std::size_t i = 0; i < n; ++i) {
+      Real rho_i = P.m[i] * W.densityAtZero();
+      auto add = [&](std::uint32_t j, const Vec<D>& rij) { rho_i += P.m[j] * W.density(rij.squaredNorm()); };
+      if (wallsInSums) forEachNeighbourSeparation(P, neighbours, i, sep, add);
+      else forEachNeighbourSeparationByKind(P, neighbours, i, sep, add, [](std::uint32_t, const Vec<D>&) {});
+      P.rho[i] = rho_i;
+      const Real p = eos.pressure(rho_i);
+      P.p[i] = clampNegative ? std::max(p, Real(0)) : p;
+      if (withSoundSpeed) P.c[i] = eos.soundSpeed(rho_i);
+    }
+  });
 }
 
 }  // namespace sph

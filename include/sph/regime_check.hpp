@@ -1,0 +1,142 @@
+// RegimeCheck<D>: is the run still in the regime its method is valid in?
+// The state check (state_check.hpp) stops a run at a NaN or a leak; this one
+// stops it earlier, when the numbers are still finite but no longer physics,
+// and names the cause (issue 9; the density window is DualSPHysics' RhopOut
+// idea). Every `every` steps, over the fluid particles:
+//   Mach number      M = max|v| / c_ref, c_ref the EOS sound speed at rho0
+//                    (Tait: c0; linear: sqrt(k)). Weakly-compressible SPH
+//                    needs M of about 0.1; M > 1 means the flow outruns its
+//                    own sound speed: stop. (None for the polytropic EOS.)
+//   breaking up      the fraction of fluid particles with no neighbour:
+//                    above 50% (from a start below 10%) the fluid has
+//                    scattered into spray: stop.
+//   collapsing       mean neighbours per particle above 4x the start:
+//                    particles are falling onto each other: stop.
+//   pairing          the fraction of fluid particles with a neighbour closer
+//                    than 0.2 dx: above 10% a warning, once (the pairing
+//                    instability; it need not end the run).
+// Cost: one pass over the neighbour list every `every` steps (10 by
+// default), about 1/10 of a density pass per step.
+#pragma once
+
+#include "sph/neighbour_list.hpp"
+#include "sph/particles.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+namespace sph {
+
+struct RegimeState {
+  Real mach = 0;               // max |v| / c_ref (0 without c_ref)
+  Real maxSpeed = 0;
+  Real isolatedFraction = 0;   // fluid particles with no neighbour
+  Real meanNeighbours = 0;     // per fluid particle
+  Real pairedFraction = 0;     // fluid particles with a neighbour closer than 0.2 dx
+};
+
+template <int D>
+RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbours, Real cRef, Real dx) {
+  const std::size_t nFluid = P.fluidCount();
+  const Real close2 = dx > 0 ? 0.04 * dx * dx : 0;
+  return neighbours.withSeparation([&](const auto& sep) {
+  Real v2 = 0;
+  std::size_t isolated = 0, paired = 0, pairs = 0;
+#pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize) \
+    reduction(max : v2) reduction(+ : isolated, paired, pairs)
+  for (std::size_t i = 0; i < nFluid; ++i) {
+    v2 = std::max(v2, P.v[i].squaredNorm());
+    std::size_t count = 0;
+    bool close = false;
+    const Vec<D> xi = P.x[i];
+    neighbours.forEach(i, [&](std::uint32_t j) {
+      ++count;
+      close |= sep(xi, P.x[j]).squaredNorm() < close2;
+    });
+    pairs += count;
+    isolated += count == 0;
+    paired += close;
+  }
+  RegimeState s;
+  s.maxSpeed = std::sqrt(v2);
+  s.mach = cRef > 0 ? s.maxSpeed / cRef : 0;
+  if (nFluid > 0) {
+    const Real n = static_cast<Real>(nFluid);
+    s.isolatedFraction = static_cast<Real>(isolated) / n;
+    s.meanNeighbours = static_cast<Real>(pairs) / n;
+    s.pairedFraction = static_cast<Real>(paired) / n;
+  }
+  return s;
+  });
+}
+
+class RegimeCheck {
+ public:
+  // cRef: 0 for no Mach check; dx: 0 for no pairing check; fluid: the
+  // number of fluid particles (few-particle cases are not a fluid: only the
+  // Mach check applies to them).
+  RegimeCheck(Real cRef, Real dx, std::size_t fluid) : cRef_(cRef), dx_(dx), fluid_(fluid) {}
+
+  Real soundSpeed() const { return cRef_; }
+  Real spacing() const { return dx_; }
+
+  // The start: what "collapsing" and "breaking up" are measured against.
+  void start(const RegimeState& s) { start_ = s; }
+
+  struct Verdict {
+    std::string stop;     // the cause, "" when the run may go on
+    std::string warning;  // "" or a warning to print once
+  };
+
+  // dt, h: the last step and the smoothing length, for the acoustic number
+  // c_ref dt / h the Mach message names.
+  Verdict judge(const RegimeState& s, Real dt, Real h) {
+    Verdict v;
+    char text[320];
+    if (cRef_ > 0 && s.mach > 1) {
+      std::snprintf(text, sizeof text,
+                    "Mach %.3g: the fastest fluid particle moves at %.3g m/s against the sound speed %.3g m/s; "
+                    "weakly-compressible SPH needs Mach of about 0.1 (c dt / h = %.3g: a time step too large for "
+                    "the integrator makes a run explode like this; lower dt, or raise c0)",
+                    s.mach, s.maxSpeed, cRef_, cRef_ * dt / h);
+      v.stop = text;
+      return v;
+    }
+    const bool aFluid = fluid_ >= 100;
+    if (aFluid && start_.isolatedFraction < 0.1 && s.isolatedFraction > 0.5) {
+      std::snprintf(text, sizeof text,
+                    "the fluid is breaking up: %.0f%% of its particles have no neighbour (%.0f%% at the start); "
+                    "the flow has scattered into spray (lower dt)",
+                    100 * s.isolatedFraction, 100 * start_.isolatedFraction);
+      v.stop = text;
+      return v;
+    }
+    if (aFluid && start_.meanNeighbours > 0 && s.meanNeighbours > 4 * start_.meanNeighbours) {
+      std::snprintf(text, sizeof text,
+                    "particles are collapsing onto each other: %.3g neighbours per particle against %.3g at the "
+                    "start (lower dt, or use a kernel that does not pair: wendland_c2)",
+                    s.meanNeighbours, start_.meanNeighbours);
+      v.stop = text;
+      return v;
+    }
+    if (aFluid && dx_ > 0 && s.pairedFraction > 0.1 && !pairingWarned_) {
+      pairingWarned_ = true;
+      std::snprintf(text, sizeof text,
+                    "pairing: %.0f%% of the fluid particles have a neighbour closer than 0.2 dx (the pairing "
+                    "instability: particles clump in pairs; in model wcsph the wendland_c2 kernel does not pair)",
+                    100 * s.pairedFraction);
+      v.warning = text;
+    }
+    return v;
+  }
+
+ private:
+  Real cRef_, dx_;
+  std::size_t fluid_;
+  RegimeState start_;
+  bool pairingWarned_ = false;
+};
+
+}  // namespace sph

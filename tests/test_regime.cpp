@@ -1,0 +1,86 @@
+// The regime check (sph/regime_check.hpp): its measures on a lattice (no
+// particle alone, the neighbour count, a pair brought together is seen),
+// and runs that leave the regime without a NaN, each stopped with its cause
+// named, exit 3, the cause in run.json and the snapshots before it intact:
+// explicit Euler past its acoustic limit (Mach), a block dropped with a time
+// step 20x the seed's (the fluid scatters into spray); `regime_check =
+// warn` lets the same run finish with a warning.
+#include "test_support.hpp"
+
+#include "sph/regime_check.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+using namespace sph;
+namespace tt = boost::test_tools;
+
+namespace {
+
+nlohmann::json runJson(const std::filesystem::path& dir) {
+  std::ifstream in(dir / "run.json");
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(regime)
+
+BOOST_AUTO_TEST_CASE(measures_on_a_lattice) {
+  CaseConfig c = test::bareWcsph(2);
+  c.kernel = "wendland_c2";
+  c.h = 0.013;
+  c.spacing = 0.01;
+  c.blockMin = {0, 0};
+  c.blockMax = {0.3, 0.3};
+  Scene<2> scene = test::sceneOf<2>(c);
+  RegimeState s = measureRegime(scene.particles(), scene.neighbours(), 10.0, 0.01);
+  BOOST_TEST(s.isolatedFraction == 0.0);
+  BOOST_TEST(s.pairedFraction == 0.0);
+  BOOST_TEST(s.meanNeighbours == scene.meanNeighbours(), tt::tolerance(1e-12));  // no walls: every particle is fluid
+  BOOST_TEST(s.mach == 0.0);
+  // Two particles brought within 0.1 dx of each other: both are paired.
+  auto& P = scene.particles();
+  P.x[1] = P.x[0] + Vec<2>(0.001, 0);
+  P.v[0] = Vec<2>(0, 25);
+  s = measureRegime(P, scene.neighbours(), 10.0, 0.01);
+  BOOST_TEST(s.pairedFraction * static_cast<Real>(P.fluidCount()) == 2.0, tt::tolerance(1e-9));
+  BOOST_TEST(s.mach == 2.5, tt::tolerance(1e-12));
+  RegimeCheck check(10.0, 0.01, P.fluidCount());
+  check.start(RegimeState{0, 0, 0, 12, 0});
+  BOOST_TEST(check.judge(s, 1e-3, 0.013).stop.find("Mach 2.5") == 0u);
+}
+
+BOOST_AUTO_TEST_CASE(explicit_euler_past_its_limit_is_stopped_as_mach) {
+  const auto dir = test::scratchDir("regime_euler");
+  const auto r = test::runSph({"run", test::caseFile("dam_break_mm"), "--output", dir.string(), "--integrator", "euler",
+                               "--dt", "5e-4", "--boundary", "reflecting", "--density", "summation",
+                               "--hydrostatic_start=false", "--delta", "0", "--threads", "1"});
+  BOOST_TEST(r.exitCode == 3, r.output);
+  BOOST_TEST(r.output.find("the run left its regime at step 10") != std::string::npos, r.output);
+  BOOST_TEST(r.output.find("Mach") != std::string::npos);
+  const auto j = runJson(dir);
+  BOOST_TEST(j["status"] == "blew_up");
+  BOOST_TEST(j["message"].get<std::string>().find("Mach") != std::string::npos);
+}
+
+BOOST_AUTO_TEST_CASE(a_block_scattered_into_spray_is_stopped_and_warn_lets_it_go) {
+  const auto dir = test::scratchDir("regime_spray");
+  const auto r = test::runSph({"run", test::caseFile("block_drop"), "--output", (dir / "stop").string(), "--dt", "2e-3",
+                               "--output_every", "50", "--threads", "1"});
+  BOOST_TEST_REQUIRE(r.exitCode == 3, r.output);
+  BOOST_TEST(r.output.find("the fluid is breaking up") != std::string::npos, r.output);
+  const auto j = runJson(dir / "stop");
+  BOOST_TEST(j["status"] == "blew_up");
+  // The last snapshot is from before the stop (step 200 of at most 210).
+  const long stopStep = j["summary"]["steps"].get<long>();
+  BOOST_TEST(std::filesystem::exists(dir / "stop" / "block_drop_00004.vtp"));
+  BOOST_TEST(stopStep > 200);
+  const auto w = test::runSph({"run", test::caseFile("block_drop"), "--output", (dir / "warn").string(), "--dt", "2e-3",
+                               "--end_time", "0.5", "--regime_check", "warn", "--threads", "1"});
+  BOOST_TEST(w.exitCode == 0, w.output);
+  BOOST_TEST(w.output.find("sph: warning: the run left its regime") != std::string::npos, w.output);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
