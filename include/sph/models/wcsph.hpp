@@ -94,7 +94,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back("xsph");
   }
 
-  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true, 0, 4, 0, std::nullopt};
+  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true, false, 0, 4, 0, std::nullopt};
   forces.continuity = continuity;
   if (continuity && s.delta > 0) {
     forces.diffusion.coefficient = 2 * s.delta * h * c0;

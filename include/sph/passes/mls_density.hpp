@@ -15,11 +15,14 @@
 // whose condition number does not depend on h.
 //
 // Guard: A_i is singular when the neighbours do not span the space (a
-// particle with one or two neighbours, or all of them on a line); when its
-// LDL^T factorisation fails or its reciprocal condition number is below
-// kMlsMinRcond the particle gets the Shepard density instead (counted: the
-// run summary prints how many). A full 2D support has rcond ~ 0.1-0.3 and a
-// particle on a flat free surface ~ 0.05; 1e-3 only catches the degenerate.
+// particle with one or two neighbours, or all of them on a line); when the
+// ratio of its smallest to its largest eigenvalue (the 2-norm reciprocal
+// condition number of the symmetric A_i, from its eigenvalues, not the LDL^T
+// estimate, which missed an isolated pair: rank 2 of 3 came out >= 1e-3) is
+// below kMlsMinRcond the particle gets the Shepard density instead (counted:
+// the run summary prints how many). A full 2D support has a ratio of
+// ~ 0.1-0.3 and a particle on a flat free surface ~ 0.05; 1e-3 only catches
+// the degenerate, whose ratio is round-off (~1e-16).
 //
 // Neighbours, walls, scratch field and timing as for Shepard
 // (shepard_density.hpp): fluid particles only, after a step.
@@ -28,6 +31,7 @@
 #include "sph/passes/shepard_density.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include <optional>
 
@@ -36,9 +40,11 @@ namespace sph {
 constexpr Real kMlsMinRcond = 1e-3;
 
 // The MLS density of fluid particle i, or nothing when A_i is singular.
-template <int D, class K>
+// r_ij = sep(x_i, x_j): x_i - x_j, or its minimum image along periodic axes
+// (NeighbourList::withSeparation chooses it once per pass).
+template <int D, class K, class Sep = FreeSpace>
 inline std::optional<Real> mlsDensity(std::size_t i, const Particles<D>& P, const NeighbourList<D>& neighbours,
-                                      const K& kernel, bool wallsInSums) {
+                                      const K& kernel, bool wallsInSums, const Sep& sep = {}) {
   using Vp = Eigen::Matrix<Real, D + 1, 1>;
   using Mp = Eigen::Matrix<Real, D + 1, D + 1>;
   const Real invH = 1 / kernel.h();
@@ -47,7 +53,7 @@ inline std::optional<Real> mlsDensity(std::size_t i, const Particles<D>& P, cons
   const Real W0 = kernel.W(0);
   A(0, 0) = P.m[i] / P.rho[i] * W0;
   auto moment = [&](std::uint32_t j) {
-    const Vec<D> rij = xi - P.x[j];
+    const Vec<D> rij = sep(xi, P.x[j]);
     Vp p;
     p[0] = 1;
     p.template tail<D>() = rij * invH;
@@ -55,12 +61,17 @@ inline std::optional<Real> mlsDensity(std::size_t i, const Particles<D>& P, cons
   };
   if (wallsInSums) neighbours.forEach(i, moment);
   else neighbours.forEachByKind(i, moment, [](std::uint32_t) {});
+  Eigen::SelfAdjointEigenSolver<Mp> eig;
+  if constexpr (D + 1 <= 3) eig.computeDirect(A, Eigen::EigenvaluesOnly);
+  else eig.compute(A, Eigen::EigenvaluesOnly);
+  const auto& lambda = eig.eigenvalues();  // ascending
+  if (!(lambda[0] >= kMlsMinRcond * lambda[D])) return std::nullopt;
   const Eigen::LDLT<Mp> ldlt(A);
-  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.rcond() >= kMlsMinRcond)) return std::nullopt;
+  if (ldlt.info() != Eigen::Success) return std::nullopt;
   const Vp beta = ldlt.solve(Vp::Unit(0));
   Real rho = P.m[i] * beta[0] * W0;
   auto add = [&](std::uint32_t j) {
-    const Vec<D> rij = xi - P.x[j];
+    const Vec<D> rij = sep(xi, P.x[j]);
     rho += P.m[j] * (beta[0] + beta.template tail<D>().dot(rij * invH)) * kernel.W(rij.norm());
   };
   if (wallsInSums) neighbours.forEach(i, add);
@@ -82,16 +93,18 @@ struct MlsDensityPass {
     long fallbacks = 0;
     std::visit(
         [&](const auto& k) {
+          neighbours.withSeparation([&](const auto& sep) {
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
-          for (std::size_t i = 0; i < n; ++i) {
-            const std::optional<Real> rho = mlsDensity(i, P, neighbours, k, wallsInSums);
-            if (rho) {
-              P.rhoReinit[i] = *rho;
-            } else {
-              P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums);
-              ++fallbacks;
+            for (std::size_t i = 0; i < n; ++i) {
+              const std::optional<Real> rho = mlsDensity(i, P, neighbours, k, wallsInSums, sep);
+              if (rho) {
+                P.rhoReinit[i] = *rho;
+              } else {
+                P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums, sep);
+                ++fallbacks;
+              }
             }
-          }
+          });
         },
         kernel);
     applyReinitialisedDensity(P, eos, clampNegative);
