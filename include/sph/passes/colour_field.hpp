@@ -20,7 +20,12 @@ struct ColourFieldPass {
   bool twoPhase = false;  // a colour region was given: difference forms
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    std::visit([&](const auto& k) { computeColourField(P, neighbours, k, method, minNormal, twoPhase); }, kernel);
+    std::visit(
+        [&](const auto& k) {
+          neighbours.withSeparation(
+              [&](const auto& sep) { computeColourField(P, neighbours, k, method, minNormal, twoPhase, sep); });
+        },
+        kernel);
     return term_bits::kColourField;
   }
 };

@@ -43,13 +43,14 @@ namespace sph {
 constexpr Real kCspmMinEigenvalue = 0.2;
 
 // M_i of fluid particle i.
-template <int D, class K>
+// M_i with r_ij = sep(x_i, x_j) (the minimum image along periodic axes).
+template <int D, class K, class Sep = FreeSpace>
 inline Mat<D> cspmMoment(std::size_t i, const Particles<D>& P, const NeighbourList<D>& neighbours, const K& kernel,
-                         bool wallsInSums) {
+                         bool wallsInSums, const Sep& sep = {}) {
   Mat<D> M = Mat<D>::Zero();
   const Vec<D> xi = P.x[i];
   auto add = [&](std::uint32_t j) {
-    const Vec<D> rij = xi - P.x[j];
+    const Vec<D> rij = sep(xi, P.x[j]);
     const Real r = rij.norm();
     if (!(r > 0)) return;
     // (x_j - x_i) (x) grad_i W_ij = -(W'/r) rij rij^T
@@ -79,16 +80,18 @@ struct CspmCorrectionPass {
     long fallbacks = 0;
     std::visit(
         [&](const auto& k) {
+          neighbours.withSeparation([&](const auto& sep) {
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
-          for (std::size_t i = 0; i < n; ++i) {
-            const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(i, P, neighbours, k, wallsInSums));
-            if (L) {
-              P.cspmL[i] = *L;
-            } else {
-              P.cspmL[i] = Mat<D>::Identity();
-              ++fallbacks;
+            for (std::size_t i = 0; i < n; ++i) {
+              const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(i, P, neighbours, k, wallsInSums, sep));
+              if (L) {
+                P.cspmL[i] = *L;
+              } else {
+                P.cspmL[i] = Mat<D>::Identity();
+                ++fallbacks;
+              }
             }
-          }
+          });
         },
         kernel);
     if (ctx.counts) {

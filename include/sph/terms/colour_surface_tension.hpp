@@ -100,9 +100,10 @@ enum class CurvatureMethod { kMuller, kMorris };
 // sum carries noise of order 0.1/h at 10% disorder. At a free surface (no
 // colour region: chi = 1 everywhere) the plain sums are the only ones that
 // see the surface, so they are used there.
-template <int D, class Kernel>
+// r_ij = sep(x_i, x_j): the minimum image along periodic axes.
+template <int D, class Kernel, class Sep = FreeSpace>
 void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel,
-                        CurvatureMethod method, Real minNormal, bool twoPhase) {
+                        CurvatureMethod method, Real minNormal, bool twoPhase, const Sep& sep = {}) {
   const ColourKernel<Kernel> W{kernel};
   const std::size_t n = P.fluidCount();
   const Real lap0 = W.laplacian(0), W0 = W.W(0);
@@ -120,7 +121,7 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
           [&](std::uint32_t j) {
             const Real dchi = P.colour[j] - base;
             if (dchi == 0) return;
-            const Vec<D> rij = xi - P.x[j];
+            const Vec<D> rij = sep(xi, P.x[j]);
             const Real r = rij.norm();
             const Real Vj = dchi * P.m[j] / P.rho[j];
             normal += (Vj * W.dWdr_r(r)) * rij;
@@ -148,7 +149,7 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
             [&](std::uint32_t j) {
               const Real nj = P.colourNormal[j].norm();
               if (!(nj > minNormal)) return;
-              const Vec<D> rij = xi - P.x[j];
+              const Vec<D> rij = sep(xi, P.x[j]);
               const Real r = rij.norm();
               const Real Vj = P.m[j] / P.rho[j];
               div += Vj * W.dWdr_r(r) * (P.colourNormal[j] / nj - nhat_i).dot(rij);
