@@ -37,6 +37,7 @@ std::vector<std::string> densityReinitNames() { return methodNames(densityReinit
 std::vector<std::string> gradientCorrectionNames() { return methodNames(gradientCorrectionMethods()); }
 std::vector<std::string> surfaceTensionNames() { return {"none", "morris", "muller"}; }
 std::vector<std::string> regimeCheckNames() { return {"stop", "warn", "off"}; }
+std::vector<std::string> probeInterpolationNames() { return {"shepard", "plain"}; }
 
 std::string fmt(double x) {
   std::ostringstream s;
@@ -261,6 +262,10 @@ const std::vector<KeySpec>& caseKeys() {
        coordinate(), "none", nullptr},
       {"front_probe", G::kOutput, &C::frontProbe, "", "Write the surge front's x (furthest fluid particle + dx/2) into front.csv",
        {}, nullptr, nullptr},
+      {"probe_interpolation", G::kOutput, &C::probeInterpolation, "",
+       "Point probes: shepard (sum_j A_j V_j W / sum_j V_j W: a constant exactly, also at a surface) or plain "
+       "(sum_j A_j V_j W: the bare SPH sum, low where the support is not full)",
+       {}, nullptr, probeInterpolationNames},
       {"probe_interval", G::kOutput, &C::probeInterval, "s",
        "Probes are sampled every this many seconds of simulated time (0: every step)", within(0, 1e12), "0: every step",
        nullptr},

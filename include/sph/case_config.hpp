@@ -97,6 +97,7 @@ struct CaseConfig {
   std::string probeNames;          // "a, b, ...": one name per point probe
   std::vector<Real> heightProbes;  // D - 1 horizontal coordinates per water-height gauge
   bool frontProbe = false;         // the surge front's x
+  std::string probeInterpolation = "shepard";  // shepard | plain
   Real probeInterval = 0;          // seconds of simulated time between samples; 0: every step
 
   // regime check (sph/regime_check.hpp): stop | warn | off
