@@ -272,6 +272,79 @@ BOOST_AUTO_TEST_CASE(square_drop_relaxes_to_a_circle_with_the_laplace_pressure_j
   BOOST_TEST(std::abs(mean - 1) < 0.10);  // the 10%
 }
 
+// Rayleigh oscillation: cases/droplet_oscillation.case, an ellipse with
+// semi-axes 0.22 and 0.18 in a second fluid of the same density, oscillates
+// in mode 2. Measured, as validation/droplet_oscillation.py does: the
+// deformation d = (Ixx - Iyy) / (Ixx + Iyy) of the drop's particles (second
+// moments about their centroid) in every snapshot (every 0.01 s); the period
+// is twice the mean time between successive zero crossings of d - mean(d),
+// linearly interpolated. Reference: Rayleigh's 2D frequency for a cylinder,
+// w^2 = n (n^2 - 1) sigma / ((rho_in + rho_out) R^3), from the mode-2 row of
+// droplet_laplace_rayleigh.csv with rho_in = rho_out = sigma = 1, scaled
+// to the drop's equal-area radius R = sqrt(N dx^2 / pi) by that law.
+// Measured: 0.357 s against Rayleigh's 0.329 s (+8.5%) at R/dx = 10; the
+// Laplace jump of this interface is 7-9% low (effective sigma ~0.92, which
+// alone lengthens the period by ~4%), and the interface is smeared over a
+// support (0.3 R). Gate 15%: a wrong law fails it by far (sigma or the
+// density sum off by 2: 41%; mode 3: half the period; inviscid damping
+// aside, the viscous shift here is 0.1%).
+BOOST_AUTO_TEST_CASE(elliptic_drop_oscillates_at_rayleighs_frequency) {
+  std::ifstream ref(test::referenceFile("droplet_laplace_rayleigh.csv"));
+  BOOST_TEST_REQUIRE(ref.good());
+  std::vector<Real> row;
+  for (std::string line; std::getline(ref, line);) {
+    if (line.rfind("2,1,1,1,", 0) != 0) continue;  // mode 2, sigma 1, rho_in 1, rho_out 1
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+  }
+  BOOST_TEST_REQUIRE(row.size() >= 9u);
+  const Real Rref = row[4], omegaRef = row[7];  // columns R, omega_2D
+
+  const auto dir = test::scratchDir("droplet_osc");
+  const auto r = test::runSph({"run", test::caseFile("droplet_oscillation"), "--output", dir.string(), "--threads",
+                               "1", "--no-progress"});
+  BOOST_TEST_REQUIRE(r.exitCode == 0, r.output);
+  const auto series = test::readPvd(dir / "droplet_oscillation.pvd");
+  BOOST_TEST_REQUIRE(series.size() > 50u);
+  std::vector<Real> t, d;
+  std::size_t nDrop = 0;
+  for (const auto& entry : series) {
+    vtkPolyData* data = entry.data;
+    vtkDataArray* colour = data->GetPointData()->GetArray("colour");
+    vtkDataArray* kind = data->GetPointData()->GetArray("kind");
+    BOOST_TEST_REQUIRE((colour && kind));
+    std::vector<Vec<2>> drop;
+    for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i) {
+      if (kind->GetTuple1(i) != 0 || colour->GetTuple1(i) < 0.5) continue;
+      double x[3];
+      data->GetPoint(i, x);
+      drop.push_back(Vec<2>(x[0], x[1]));
+    }
+    Vec<2> centre = Vec<2>::Zero();
+    for (const auto& x : drop) centre += x;
+    centre /= static_cast<Real>(drop.size());
+    Real Ixx = 0, Iyy = 0;
+    for (const auto& x : drop) Ixx += std::pow(x[0] - centre[0], 2), Iyy += std::pow(x[1] - centre[1], 2);
+    t.push_back(entry.time);
+    d.push_back((Ixx - Iyy) / (Ixx + Iyy));
+    nDrop = drop.size();
+  }
+  Real mean = 0;
+  for (Real v : d) mean += v / static_cast<Real>(d.size());
+  std::vector<Real> crossings;
+  for (std::size_t k = 0; k + 1 < d.size(); ++k) {
+    const Real a = d[k] - mean, b = d[k + 1] - mean;
+    if (a * b < 0) crossings.push_back(t[k] + (t[k + 1] - t[k]) * a / (a - b));
+  }
+  BOOST_TEST_REQUIRE(crossings.size() >= 4u);  // two periods at least
+  const Real period = 2 * (crossings.back() - crossings.front()) / static_cast<Real>(crossings.size() - 1);
+  const Real R = std::sqrt(static_cast<Real>(nDrop) * 0.02 * 0.02 / kPi);
+  const Real rayleigh = 2 * kPi / (omegaRef * std::pow(Rref / R, 1.5));
+  BOOST_TEST_MESSAGE("drop of " << nDrop << " particles, R = " << R << ": " << crossings.size()
+                                << " zero crossings, period " << period << " s, Rayleigh " << rayleigh << " s");
+  BOOST_TEST(std::abs(period / rayleigh - 1) < 0.15);
+}
+
 // Off, the colour pass, its fields and the force do not exist; on, they do.
 BOOST_AUTO_TEST_CASE(surface_tension_and_artificial_pressure_cost_nothing_when_off) {
   CaseConfig c = colourCase("cubic_spline", 0.026, 0.02, lattice(10, 0.02, 0, 0));
