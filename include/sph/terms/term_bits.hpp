@@ -23,13 +23,14 @@ enum : unsigned {
   kAdamiWalls = 1u << 13,
   kDynamicWalls = 1u << 14,
   kRepulsiveWalls = 1u << 15,
-  kShepardDensity = 1u << 16,  // density re-initialisation, zeroth order
-  kMlsDensity = 1u << 17,      // density re-initialisation, first order (MLS)
-  kCspmCorrection = 1u << 18,  // the L_i pre-pass
-  kCspmPressure = 1u << 19,    // the pressure gradient with L_i
-  kArtificialPressure = 1u << 20,
-  kColourField = 1u << 21,
-  kSurfaceTension = 1u << 22,
+  // 1u << 16 is left to kMorrisViscosity (main); issue 11's bits follow it
+  kShepardDensity = 1u << 17,  // density re-initialisation, zeroth order
+  kMlsDensity = 1u << 18,      // density re-initialisation, first order (MLS)
+  kCspmCorrection = 1u << 19,  // the L_i pre-pass
+  kCspmPressure = 1u << 20,    // the pressure gradient with L_i
+  kArtificialPressure = 1u << 21,
+  kColourField = 1u << 22,
+  kSurfaceTension = 1u << 23,
 };
 
 }  // namespace sph::term_bits
