@@ -86,6 +86,12 @@ void validateCase(const CaseConfig& c) {
     if (!c.blockMin.empty() || !c.discCenter.empty() || !c.points.empty())
       throw CaseError("star_* generators cannot be combined with block, disc or points (their masses differ)");
   }
+  if (c.isGiven("g") && c.isGiven("gravity"))
+    throw CaseError("g and gravity are both given: choose one (g = 9.81 is the shorthand for gravity = [0, -9.81] "
+                    "in 2D, [0, 0, -9.81] in 3D)");
+  requireSize("gravity", c.gravity, D, true);
+  if (seed && !c.gravity.empty())
+    throw CaseError("gravity = [...] needs model = \"wcsph\"; model seed_wcsph has gravity along -y only (use g)");
   requireSize("domain_min", c.domainMin, D, false);
   requireSize("domain_max", c.domainMax, D, false);
   for (int d = 0; d < D; ++d) {
@@ -133,13 +139,15 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
   };
   const bool seed = c.model == "seed_wcsph";
   if (seed) {
-    for (const char* key : {"gamma", "c0", "polytropic_index", "alpha", "beta"})
+    for (const char* key : {"gamma", "c0", "polytropic_index", "alpha", "beta", "nu", "background_pressure"})
       note(key, "model seed_wcsph has its own fixed terms; it applies to model wcsph");
   } else {
     for (const char* key : {"gamma", "c0"}) owned(key, {"tait"}, c.eos, "eos");
     owned("polytropic_index", {"polytropic"}, c.eos, "eos");
+    owned("background_pressure", {"linear", "tait"}, c.eos, "eos");
     if (c.eos == "tait") note("k", "eos tait uses c0 and gamma");
     for (const char* key : {"alpha", "beta"}) owned(key, {"monaghan"}, c.viscosity, "viscosity");
+    owned("nu", {"morris"}, c.viscosity, "viscosity");
     if (c.viscosity != "laplacian") note("mu", "viscosity is " + c.viscosity + "; it applies to viscosity laplacian");
   }
   if (c.densityReinit == "none")
@@ -151,6 +159,7 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
                             "colour_ellipse_radii"})
       note(key, "surface_tension is none; it applies to surface_tension morris or muller");
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
+  if (!c.gravity.empty()) note("g", "gravity gives the body acceleration");
   if (c.starMass == 0)
     for (const char* key : {"star_radius", "star_particles", "star_center", "star_velocity", "seed"})
       note(key, "there is no toy star (star_mass = 0)");
@@ -159,6 +168,10 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
     for (const char* key : {"block_min", "block_max", "disc_center", "disc_radius", "points", "velocity"})
       note(key, "particle_file " + c.particleFile + " replaces the generators");
   if (c.cfl == 0) note("cfl", "cfl = 0 is a fixed time step");
+  if (c.paddle == 0)
+    for (const char* key : {"paddle_amplitude", "paddle_period"}) note(key, "there is no paddle (paddle = 0)");
+  if (c.shifting != "fickian") note("shifting_coefficient", "shifting is none; it applies to shifting fickian");
+  if (c.initialFlow == "none") note("flow_speed", "initial_flow is none; it applies to initial_flow taylor_green");
   if (c.probePoints.empty() && c.heightProbes.empty() && !c.frontProbe)
     note("probe_interval", "there are no probes (probe_points, height_probes, front_probe)");
   if (c.probePoints.empty()) note("probe_interpolation", "there are no point probes (probe_points)");

@@ -38,6 +38,8 @@ std::vector<std::string> gradientCorrectionNames() { return methodNames(gradient
 std::vector<std::string> surfaceTensionNames() { return {"none", "morris", "muller"}; }
 std::vector<std::string> regimeCheckNames() { return {"stop", "warn", "off"}; }
 std::vector<std::string> probeInterpolationNames() { return {"shepard", "plain"}; }
+std::vector<std::string> shiftingNames() { return {"none", "fickian"}; }
+std::vector<std::string> initialFlowNames() { return {"none", "taylor_green"}; }
 
 std::string fmt(double x) {
   std::ostringstream s;
@@ -108,6 +110,12 @@ const std::vector<KeySpec>& caseKeys() {
       {"disc_velocity", G::kScene, &C::discVelocity, "m/s",
        "Initial velocity of each disc, D values per disc (instead of velocity)", within(-1e6, 1e6), "velocity",
        nullptr},
+      {"initial_flow", G::kScene, &C::initialFlow, "",
+       "Initial velocity and pressure field of the fluid: none, or taylor_green (2D, periodic square box of side L: "
+       "u = -U cos(2 pi x/L) sin(2 pi y/L), v = U sin(2 pi x/L) cos(2 pi y/L), p = -rho0 U^2/4 (cos 4 pi x/L + cos 4 pi y/L))",
+       {}, nullptr, initialFlowNames},
+      {"flow_speed", G::kScene, &C::flowSpeed, "m/s", "U of the initial flow (initial_flow taylor_green)",
+       within(0, 1e6), nullptr, nullptr},
       {"spacing", G::kScene, &C::spacing, "m", "Lattice spacing dx of blocks and discs", within(0, 1e9), "none",
        nullptr},
       {"velocity", G::kScene, &C::velocity, "m/s", "Initial velocity of generated particles (D values)",
@@ -139,6 +147,10 @@ const std::vector<KeySpec>& caseKeys() {
       {"eos", G::kPhysics, &C::eos, "", "Equation of state (model wcsph)", {}, "linear", eosNames},
       {"c0", G::kPhysics, &C::c0, "m/s", "Tait sound speed (eos tait; usually 10x the largest flow speed)",
        within(0, 1e6), "none", nullptr},
+      {"background_pressure", G::kPhysics, &C::backgroundPressure, "Pa",
+       "Background pressure p_b added to p (eos linear and tait; for flows without a free surface, e.g. a periodic "
+       "box: keeps p > 0 against the tensile instability)",
+       within(0, 1e12), nullptr, nullptr},
       {"gamma", G::kPhysics, &C::gamma, "", "Tait exponent (eos tait)", above(0, 20), nullptr, nullptr},
       {"polytropic_index", G::kPhysics, &C::polytropicIndex, "", "n in p = k rho^(1 + 1/n) (eos polytropic)",
        above(0, 100), nullptr, nullptr},
@@ -146,12 +158,20 @@ const std::vector<KeySpec>& caseKeys() {
       {"viscosity", G::kPhysics, &C::viscosity, "", "Viscosity (model wcsph)", {}, "laplacian", viscosityNames},
       {"mu", G::kPhysics, &C::mu, "Pa s (3D), kg/s (2D)",
        "Dynamic viscosity (seed model, viscosity laplacian; 0 switches it off)", within(0, 1e10), nullptr, nullptr},
+      {"nu", G::kPhysics, &C::nu, "m^2/s",
+       "Kinematic viscosity (viscosity morris; 0 switches it off; water 1e-6)", within(0, 1e6), nullptr, nullptr},
       {"alpha", G::kPhysics, &C::alpha, "", "Monaghan viscosity alpha (viscosity monaghan)", within(0, 100),
        nullptr, nullptr},
       {"beta", G::kPhysics, &C::beta, "", "Monaghan viscosity beta (viscosity monaghan)", within(0, 100), nullptr,
        nullptr},
-      {"g", G::kPhysics, &C::g, "m/s^2", "Gravity along -y (2D) or -z (3D) (0 switches it off)", within(-1e6, 1e6),
-       nullptr, nullptr},
+      {"g", G::kPhysics, &C::g, "m/s^2",
+       "Gravity magnitude, pointing along -y in 2D and -z in 3D: shorthand for gravity = [0, -g] or [0, 0, -g] "
+       "(0 switches it off; not with gravity)",
+       within(-1e6, 1e6), nullptr, nullptr},
+      {"gravity", G::kPhysics, &C::gravity, "m/s^2",
+       "Body acceleration as a vector, D values, any direction (e.g. [0, -9.81], or [1e-4, 0] to drive a channel "
+       "flow); replaces g, which must then not be given",
+       within(-1e6, 1e6), "[0, -g] / [0, 0, -g]", nullptr},
       {"restitution", G::kPhysics, &C::restitution, "",
        "Reflecting walls: the normal velocity becomes -e times itself", within(0, 1), nullptr, nullptr},
       // Walls and density (model wcsph)
@@ -165,11 +185,22 @@ const std::vector<KeySpec>& caseKeys() {
        "Allow fewer wall layers than the support needs (the fluid then leaks; for tests of leakage)", {}, nullptr,
        nullptr},
       {"lid", G::kPhysics, &C::lid, "", "Wall particles on the top of the box too (a closed tank)", {}, nullptr, nullptr},
+      {"lid_velocity", G::kPhysics, &C::lidVelocity, "m/s",
+       "The lid (lid = true, boundary dummy) slides with this constant velocity, D values along its plane (a "
+       "Couette plate, a lid-driven cavity); its particles stay in place and show the fluid that velocity",
+       within(-1e6, 1e6), "at rest", nullptr},
       {"wall_slip", G::kPhysics, &C::wallSlip, "", "Dummy and dynamic walls in the viscous term", {}, nullptr, slipNames},
       {"obstacle_min", G::kScene, &C::obstacleMin, "m", "Solid boxes of wall particles inside the domain: lower corners, D values per box",
        coordinate(), "none", nullptr},
       {"obstacle_max", G::kScene, &C::obstacleMax, "m", "Solid boxes: upper corners, D values per box", coordinate(), "none",
        nullptr},
+      {"paddle", G::kScene, &C::paddle, "",
+       "The obstacle (1 = the first of obstacle_min/obstacle_max) that moves as a paddle, d(t) = paddle_amplitude "
+       "sin(2 pi t / paddle_period); 0: none",
+       count(0, 1000000), nullptr, nullptr},
+      {"paddle_amplitude", G::kScene, &C::paddleAmplitude, "m", "The paddle's amplitude A, D values (its direction too)",
+       within(-1e6, 1e6), "none", nullptr},
+      {"paddle_period", G::kScene, &C::paddlePeriod, "s", "The paddle's period T", above(0, 1e9), nullptr, nullptr},
       {"density", G::kPhysics, &C::density, "",
        "Density: summation (rho = sum m W) or continuity (d rho/dt = sum m v.grad W, integrated)", {}, nullptr,
        densityNames},
@@ -183,6 +214,12 @@ const std::vector<KeySpec>& caseKeys() {
        {}, nullptr, nullptr},
       {"negative_pressure", G::kPhysics, &C::negativePressure, "", "Negative pressures: none (kept) or clamp (set to 0)",
        {}, nullptr, negativePressureNames},
+      {"shifting", G::kPhysics, &C::shifting, "",
+       "Particle shifting each step, dr = -A h U dt grad C, U the largest fluid speed (Lind 2012, Sun 2017): none or fickian; for internal "
+       "flows (no shift within a support of a free surface)",
+       {}, nullptr, shiftingNames},
+      {"shifting_coefficient", G::kPhysics, &C::shiftingCoefficient, "", "A in the particle shift (shifting fickian)",
+       within(0, 100), nullptr, nullptr},
       {"xsph", G::kPhysics, &C::xsph, "", "XSPH epsilon (model wcsph; 0: off)", within(0, 1), nullptr, nullptr},
       {"damping", G::kPhysics, &C::damping, "1/s", "Linear damping nu in a = -nu v (model wcsph; 0: off)",
        within(0, 1e6), nullptr, nullptr},

@@ -89,6 +89,21 @@ void validateWallsAndDensity(const CaseConfig& c) {
   if (c.densityReinit != "none" && c.density != "continuity")
     throw CaseError("density_reinit = \"" + c.densityReinit + "\" needs density = \"continuity\" (summation "
                     "density is recomputed from the positions at every step)");
+  if (c.backgroundPressure != 0 && (seed || (!c.eos.empty() && c.eos != "linear" && c.eos != "tait")))
+    throw CaseError("background_pressure = " + number(c.backgroundPressure) +
+                    " needs model = \"wcsph\" with eos = \"linear\" or \"tait\"");
+  if (c.shifting != "none" && (seed || !(c.spacing > 0)))
+    throw CaseError("shifting = \"" + c.shifting + "\" needs model = \"wcsph\" and the lattice spacing (spacing > 0): "
+                    "the shift's tensile term compares W_ij with W(dx)");
+  if (c.initialFlow == "taylor_green") {
+    if (seed || c.dimension != 2 || c.periodic != "xy")
+      throw CaseError("initial_flow = \"taylor_green\" needs model = \"wcsph\", dimension = 2 and periodic = \"xy\" "
+                      "(the vortex array of a periodic square box)");
+    const Real Lx = c.domainMax[0] - c.domainMin[0], Ly = c.domainMax[1] - c.domainMin[1];
+    if (std::abs(Lx - Ly) > 1e-9 * Lx)
+      throw CaseError("initial_flow = \"taylor_green\" needs a square domain: domain_max - domain_min is " + number(Lx) +
+                      " x " + number(Ly) + " m");
+  }
   if (c.boundary == "dynamic" && c.density != "continuity")
     throw CaseError("boundary = \"dynamic\" needs density = \"continuity\" (dynamic wall particles carry a "
                     "density by the continuity equation)");
@@ -111,6 +126,34 @@ void validateWallsAndDensity(const CaseConfig& c) {
       if (a < c.domainMin[d] || b > c.domainMax[d])
         throw CaseError("obstacle " + std::to_string(k / D + 1) + " reaches outside the domain [domain_min, domain_max]");
     }
+  if (c.paddle > 0) {
+    const std::size_t count = c.obstacleMin.size() / D;
+    if (static_cast<std::size_t>(c.paddle) > count)
+      throw CaseError("paddle = " + std::to_string(c.paddle) + " names no obstacle: the case has " +
+                      std::to_string(count) + " (obstacle_min/obstacle_max); give 1 to " + std::to_string(count) +
+                      " or 0 for none");
+    if (c.paddleAmplitude.size() != D)
+      throw CaseError("paddle_amplitude has " + std::to_string(c.paddleAmplitude.size()) + " values: it needs " +
+                      std::to_string(D) + " (the paddle's displacement amplitude per dimension)");
+    const std::size_t k = static_cast<std::size_t>(c.paddle - 1) * D;
+    for (std::size_t d = 0; d < D; ++d) {
+      const Real A = std::abs(c.paddleAmplitude[d]);
+      if (c.obstacleMin[k + d] - A < c.domainMin[d] || c.obstacleMax[k + d] + A > c.domainMax[d])
+        throw CaseError("paddle " + std::to_string(c.paddle) + " with paddle_amplitude " + number(c.paddleAmplitude[d]) +
+                        " would leave the domain [domain_min, domain_max] along axis " + std::to_string(d));
+    }
+  }
+  if (!c.lidVelocity.empty()) {
+    if (c.lidVelocity.size() != D)
+      throw CaseError("lid_velocity has " + std::to_string(c.lidVelocity.size()) + " values: it needs " +
+                      std::to_string(D) + " (one per dimension)");
+    if (!(c.lid && c.walls && c.boundary == "dummy"))
+      throw CaseError("lid_velocity needs a lid of dummy wall particles: lid = true, boundary = \"dummy\"");
+    if (c.lidVelocity[D - 1] != 0)
+      throw CaseError("lid_velocity = [..., " + number(c.lidVelocity[D - 1]) +
+                      "]: the lid may only slide along its plane (its last component must be 0; the lid's "
+                      "particles do not move)");
+  }
   if (c.hydrostaticStart && c.blockMax.empty() && c.discRadius.empty())
     throw CaseError("hydrostatic_start needs a fluid block or disc (block_min/block_max, disc_center/disc_radius): "
                     "the top of each body is the free surface its hydrostatic pressure starts from");

@@ -244,6 +244,28 @@ void addFile(InitialState<D>& s, const CaseConfig& c) {
 
 }  // namespace
 
+// The Taylor-Green vortex array of a periodic square box of side L
+// (Taylor & Green 1937; the 2D decaying solution, e.g. Adami, Hu & Adams
+// 2013, J. Comput. Phys. 241, sec. 4.1), k = 2 pi / L:
+//   u = -U cos(k x) sin(k y),  v = U sin(k x) cos(k y),
+//   p = -rho0 U^2 / 4 (cos(2 k x) + cos(2 k y)),
+// decaying as exp(-2 nu k^2 t) (velocity). The density is the EOS inverse of
+// p and the mass rho dx^D, so every particle keeps its lattice volume.
+template <int D>
+void addTaylorGreenFlow(Particles<D>& P, const CaseConfig& c) {
+  const CaseConfig resolved = withDefaults(c);
+  const EquationOfState eos = findMethod(eosMethods(), resolved.eos)->make(resolved);
+  const Real U = c.flowSpeed, L = c.domainMax[0] - c.domainMin[0], k = 2 * std::acos(Real(-1)) / L;
+  for (std::size_t i = 0; i < P.fluidCount(); ++i) {
+    const Real x = P.x[i][0] - c.domainMin[0], y = P.x[i][1] - c.domainMin[1];
+    P.v[i][0] = -U * std::cos(k * x) * std::sin(k * y);
+    P.v[i][1] = U * std::sin(k * x) * std::cos(k * y);
+    const Real p = -c.rho0 * U * U / 4 * (std::cos(2 * k * x) + std::cos(2 * k * y));
+    P.rho[i] = std::visit([&](const auto& e) { return e.density(p + c.backgroundPressure); }, eos);
+    P.m[i] *= P.rho[i] / c.rho0;
+  }
+}
+
 template <int D>
 InitialState<D> buildInitialState(const CaseConfig& c) {
   InitialState<D> s;
@@ -284,7 +306,12 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   if (wcsph && c.walls && c.boundary != "reflecting") {
     const int layers = c.wallLayers > 0 ? static_cast<int>(c.wallLayers) : wallLayersNeeded(c);
     const Real mWall = c.rho0 * std::pow(c.spacing, D);
-    for (const Vec<D>& x : wallParticlePositions<D>(c, layers)) addParticle<D>(P, x, Vec<D>::Zero(), mWall);
+    // A sliding lid: the wall particles above the box carry its velocity
+    // u_w, which the wall terms see (dummy_adami2012.hpp); none moves.
+    const Real top = c.domainMax[static_cast<std::size_t>(D - 1)];
+    const Vec<D> uLid = c.lidVelocity.empty() ? Vec<D>::Zero() : toVec<D>(c.lidVelocity);
+    for (const Vec<D>& x : wallParticlePositions<D>(c, layers))
+      addParticle<D>(P, x, x[D - 1] > top ? uLid : Vec<D>::Zero(), mWall);
   }
   P.resize(P.x.size(), nFluid);
   // Density: rho0, or the hydrostatic balance p = rho0 g (H - y) with H the
@@ -319,11 +346,12 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
     const bool dummyWalls = c.boundary == "dummy";
     for (std::size_t i = 0; i < P.size(); ++i) {
       const Real H = i < s.surface.size() ? s.surface[i] : (i < nFluid ? P.x[i][D - 1] : top);
-      const Real p = std::max(Real(0), c.rho0 * c.g * (H - P.x[i][D - 1]));
-      P.rho[i] = std::visit([&](const auto& e) { return e.density(p); }, eos);
+      const Real p = std::max(Real(0), c.rho0 * -gravityVector<D>(c)[D - 1] * (H - P.x[i][D - 1]));
+      P.rho[i] = std::visit([&](const auto& e) { return e.density(p + c.backgroundPressure); }, eos);
       if (i < nFluid || !dummyWalls) P.m[i] *= P.rho[i] / c.rho0;
     }
   }
+  if (wcsph && c.initialFlow == "taylor_green") addTaylorGreenFlow(P, c);
   return s;
 }
 

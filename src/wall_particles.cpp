@@ -106,6 +106,19 @@ std::vector<Vec<D>> wallParticlePositions(const CaseConfig& c, int layers) {
   return out;
 }
 
+template <int D>
+std::pair<std::size_t, std::size_t> obstacleParticleRange(const CaseConfig& c, int layers, std::size_t k) {
+  CaseConfig upTo = c;
+  upTo.obstacleMin.resize(k * D);
+  upTo.obstacleMax.resize(k * D);
+  const std::size_t first = wallParticlePositions<D>(upTo, layers).size();
+  upTo.obstacleMin.assign(c.obstacleMin.begin(), c.obstacleMin.begin() + static_cast<long>((k + 1) * D));
+  upTo.obstacleMax.assign(c.obstacleMax.begin(), c.obstacleMax.begin() + static_cast<long>((k + 1) * D));
+  return {first, wallParticlePositions<D>(upTo, layers).size()};
+}
+
+template std::pair<std::size_t, std::size_t> obstacleParticleRange<2>(const CaseConfig&, int, std::size_t);
+template std::pair<std::size_t, std::size_t> obstacleParticleRange<3>(const CaseConfig&, int, std::size_t);
 template std::vector<Vec<2>> wallParticlePositions<2>(const CaseConfig&, int);
 template std::vector<Vec<3>> wallParticlePositions<3>(const CaseConfig&, int);
 

@@ -188,3 +188,149 @@ def dam_break_errors(run, T_range=(1.0, 3.0)):
         "height_mean_abs_error": float(np.abs(eh).mean()) if selh.any() else float("nan"),
         "height_points": int(selh.sum()),
     }
+
+
+# ---- Channel flows (Morris, Fox & Zhu 1997): Poiseuille and Couette ----
+
+def channel_profile_errors(run, flow):
+    """The velocity profile u(y) against the series solution of Morris et al.
+    (1997) at each time of the reference table (the snapshot at that time;
+    its last column, "steady", against the last snapshot). flow: "poiseuille"
+    (scale u_max = F L^2 / (8 nu), F = gravity[0]) or "couette" (scale V0 =
+    lid_velocity[0]). Per time: the worst row (fluid particles of one y
+    lattice row, their u_x averaged) and the worst particle, both as
+    |u - u_series| / scale; the rows are the profile the paper plots."""
+    c = run.case
+    L = c["domain_max"][-1] - c["domain_min"][-1]
+    y0 = c["domain_min"][-1]
+    if flow == "poiseuille":
+        scale = c["gravity"][0] * L * L / (8 * c["nu"])
+        table = reference_table("poiseuille_morris1997_series.csv")
+    else:
+        scale = c["lid_velocity"][0]
+        table = reference_table("couette_morris1997_series.csv")
+    times = [0.0225, 0.045, 0.1125, 0.225, 0.45, 1.0]
+    entries = run.entries
+    out = []
+    for k, t in enumerate(times + [None]):
+        if t is None:
+            tt, path = entries[-1]
+            label = "steady (t = %.3g s)" % tt
+        else:
+            near = [e for e in entries if abs(e[0] - t) < 1e-9]
+            if not near:
+                continue
+            tt, path = near[0]
+            label = "t = %.4g s" % t
+        s = Snapshot(path)
+        xf = s.x[s.fluid]
+        u = s["velocity"][s.fluid][:, 0]
+        eta = (xf[:, len(c["domain_min"]) - 1] - y0) / L
+        ref = np.interp(eta, table[:, 0], table[:, k + 1])
+        err = (u / scale - ref)
+        rows = np.round(eta * 1e6).astype(np.int64)
+        row_err = [abs(err[rows == r].mean()) for r in np.unique(rows)]
+        out.append({"label": label, "time": tt, "row_max": float(max(row_err)),
+                    "particle_max": float(np.abs(err).max()), "rows": len(row_err),
+                    "u_mid": float(np.interp(0.5, np.sort(eta), (u / scale)[np.argsort(eta)]))})
+    return out, scale
+
+
+def midline_history_errors(run, flow):
+    """u(L/2, t) from the point probe named "midline" (probes.csv, Shepard
+    interpolation) against channel_midline_history.csv (Morris et al. 1997
+    series): the worst |u - u_ref| / scale over the reference times the probe
+    file covers (linear interpolation between samples)."""
+    import csv
+    c = run.case
+    L = c["domain_max"][-1] - c["domain_min"][-1]
+    scale = c["gravity"][0] * L * L / (8 * c["nu"]) if flow == "poiseuille" else c["lid_velocity"][0]
+    with open(os.path.join(run.folder, "probes.csv")) as f:
+        rows = list(csv.reader(f))
+    head = rows[0]
+    col = head.index("midline vx [m/s]")
+    t = np.array([float(r[0]) for r in rows[1:]])
+    u = np.array([float(r[col]) for r in rows[1:]])
+    table = reference_table("channel_midline_history.csv")
+    ref_t = table[:, 0]
+    ref = table[:, 1 if flow == "poiseuille" else 2]
+    keep = ref_t <= t[-1] + 1e-12
+    err = np.abs(np.interp(ref_t[keep], t, u) / scale - ref[keep])
+    return {"points": int(keep.sum()), "max_error": float(err.max()), "mean_error": float(err.mean()),
+            "t_worst": float(ref_t[keep][np.argmax(err)])}
+
+
+def taylor_green_errors(run, t_l2=1.0, t_range=(0.0, 2.0)):
+    """The 2D Taylor-Green vortex (initial_flow taylor_green): max|u|(t) of
+    each snapshot and the mode amplitude a(t) = sum u . phi / sum phi . phi
+    (phi the vortex mode at the particles' positions: max|u| of a smooth
+    field without one noisy particle deciding it), the decay rates b of
+    least-squares fits of log max|u| and log a against t over t_range, against the exact 8 pi^2 nu / L^2 (= 8 pi^2 / Re
+    for U = L = 1), and the velocity L2 error at t_l2,
+    sqrt(sum |u - u_exact|^2 / sum |u_exact|^2) over the particles, with
+    u_exact at each particle's position."""
+    c = run.case
+    L = c["domain_max"][0] - c["domain_min"][0]
+    U = c["flow_speed"]
+    nu = c["nu"]
+    k = 2 * np.pi / L
+    b_exact = 2 * nu * k * k
+    times, umax, amp, l2 = [], [], [], None
+    for tt, path in run.entries:
+        if tt < t_range[0] - 1e-12 or tt > t_range[1] + 1e-12:
+            continue
+        s = Snapshot(path)
+        v = s["velocity"][s.fluid][:, :2]
+        x = s.x[s.fluid][:, 0] - c["domain_min"][0]
+        y = s.x[s.fluid][:, 1] - c["domain_min"][1]
+        mode = np.stack([-np.cos(k * x) * np.sin(k * y), np.sin(k * x) * np.cos(k * y)], axis=1)
+        times.append(tt)
+        umax.append(float(np.sqrt((v ** 2).sum(axis=1)).max()))
+        amp.append(float((v * mode).sum() / (mode * mode).sum()))
+        if abs(tt - t_l2) < 1e-9:
+            ue = U * np.exp(-b_exact * tt) * mode
+            l2 = float(np.sqrt(((v - ue) ** 2).sum() / (ue ** 2).sum()))
+    times, umax, amp = np.array(times), np.array(umax), np.array(amp)
+    b = -np.polyfit(times, np.log(umax / U), 1)[0]
+    b_mode = -np.polyfit(times, np.log(amp / U), 1)[0]
+    return {"decay_rate": float(b), "decay_rate_exact": float(b_exact), "decay_rate_error": float(b / b_exact - 1),
+            "mode_decay_rate": float(b_mode), "mode_decay_rate_error": float(b_mode / b_exact - 1),
+            "umax_end": float(umax[-1]), "umax_end_exact": float(U * np.exp(-b_exact * times[-1])),
+            "mode_end": float(amp[-1]),
+            "time_end": float(times[-1]), "l2_at": t_l2, "l2_error": l2, "snapshots": len(times)}
+
+
+def wave_paddle_heights(run, gauge=0, window=(2.0, 4.5)):
+    """Wave height at a height gauge (heights.csv column `gauge`) of the
+    piston wave maker (keys paddle, paddle_amplitude, paddle_period): the
+    mean over the whole periods in `window` of max - min of the water level,
+    against the linear piston wave-maker theory of Biesel (Dean & Dalrymple
+    1991, eq. 6.19), H / S = 2 (cosh 2kh - 1) / (sinh 2kh + 2kh), S = 2 A,
+    omega^2 = g k tanh(kh), h the still-water depth."""
+    import csv
+    c = run.case
+    with open(os.path.join(run.folder, "heights.csv")) as f:
+        rows = list(csv.reader(f))
+    head = rows[0]
+    t = np.array([float(r[0]) for r in rows[1:]])
+    z = np.array([float(r[1 + gauge]) for r in rows[1:]])
+    T = c["paddle_period"]
+    A = abs(c["paddle_amplitude"][0])
+    depth = c["block_max"][-1] - c["block_min"][-1]
+    g = abs(c.get("g", 9.81)) if not c.get("gravity") else abs(c["gravity"][-1])
+    w = 2 * np.pi / T
+    k = w * w / g
+    for _ in range(200):  # omega^2 = g k tanh(kh), by fixed point on k
+        k = w * w / (g * np.tanh(k * depth))
+    kh = k * depth
+    ratio = 2 * (np.cosh(2 * kh) - 1) / (np.sinh(2 * kh) + 2 * kh)
+    heights = []
+    n = int(np.floor((window[1] - window[0]) / T + 1e-9))
+    for p in range(n):
+        m = (t >= window[0] + p * T - 1e-9) & (t <= window[0] + (p + 1) * T + 1e-9)
+        if m.sum() > 2:
+            heights.append(float(z[m].max() - z[m].min()))
+    H = float(np.mean(heights)) if heights else float("nan")
+    return {"gauge": head[1 + gauge], "kh": float(kh), "wavelength": float(2 * np.pi / k),
+            "H_theory": float(ratio * 2 * A), "H": H, "periods": len(heights),
+            "H_each": heights, "error": float(H / (ratio * 2 * A) - 1)}

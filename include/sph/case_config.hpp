@@ -35,7 +35,8 @@ struct CaseConfig {
   Real k = 2000;
   Real rho0 = 1000;
   Real mu = 1;
-  Real g = 9.81;
+  Real g = 9.81;            // shorthand: gravity = -g e_up
+  std::vector<Real> gravity;  // body acceleration, D values (instead of g)
   Real restitution = 0.5;
   bool walls = true;        // the domain box has walls
   std::string periodic;     // periodic axes of the domain box: "x", "xy", "xz", ... ("" or "none": none)
@@ -45,13 +46,21 @@ struct CaseConfig {
   long wallLayers = 0;                  // layers of wall particles (0: as many as the support needs)
   bool wallLayersOverride = false;      // allow fewer layers than the support needs
   bool lid = false;                     // wall particles on the top of the box too
+  std::vector<Real> lidVelocity;        // the lid slides with this velocity (D values, tangential)
   std::string wallSlip = "no_slip";     // no_slip | free_slip
   std::vector<Real> obstacleMin, obstacleMax;  // boxes of wall particles inside the domain, D values each
+  long paddle = 0;                      // the obstacle (1-based) that moves as a paddle; 0: none
+  std::vector<Real> paddleAmplitude;    // its displacement A sin(2 pi t / T), D values
+  Real paddlePeriod = 1;                // T [s]
   std::string density = "summation";    // summation | continuity
   Real delta = 0;                       // delta-SPH coefficient (0: off)
   std::string diffusion = "fourtakas";  // fourtakas | molteni
   bool hydrostaticStart = false;        // start at rest in hydrostatic balance
   std::string negativePressure = "none";  // none | clamp
+  std::string shifting = "none";        // none | fickian (particle_shifting.hpp)
+  Real shiftingCoefficient = 4;         // A in dr = -A h U dt grad C
+  std::string initialFlow = "none";     // none | taylor_green (initial velocity and pressure field)
+  Real flowSpeed = 1;                   // U of the initial flow
 
   // kernel corrections (model wcsph)
   std::string densityReinit = "none";      // none | shepard | mls
@@ -61,11 +70,13 @@ struct CaseConfig {
   // wcsph: choices by name ("" = the model's default)
   std::string kernel;       // cubic_spline | wendland_c2 | gaussian | muller
   std::string eos;          // linear | linear_clamped | tait | polytropic
-  std::string viscosity;    // none | laplacian | monaghan
+  std::string viscosity;    // none | laplacian | monaghan | morris
   Real gamma = 7;           // Tait exponent
   Real c0 = 0;              // Tait sound speed (0: 10 sqrt(2 g H) is the user's job)
   Real polytropicIndex = 1; // n in p = k rho^(1 + 1/n)
+  Real backgroundPressure = 0;  // p_b added by eos linear and tait
   Real alpha = 1, beta = 2; // Monaghan artificial viscosity
+  Real nu = 1e-6;           // kinematic viscosity (viscosity morris)
   Real xsph = 0;            // XSPH epsilon (0: off)
   Real damping = 0;         // nu in a = -nu v (0: off)
   Real artificialPressure = 0;   // Monaghan 2000 artificial pressure epsilon (0: off)
@@ -164,6 +175,19 @@ int requestedThreads(const CaseConfig& c);
 std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& c);
 // The warnings for the keys among those that the case sets.
 std::vector<std::string> unusedKeyNotes(const CaseConfig& c);
+
+// The body acceleration of a validated case: `gravity`, or -g along the
+// last axis.
+template <int D>
+Vec<D> gravityVector(const CaseConfig& c) {
+  Vec<D> a = Vec<D>::Zero();
+  if (!c.gravity.empty()) {
+    for (int d = 0; d < D; ++d) a[d] = c.gravity[static_cast<std::size_t>(d)];
+    return a;
+  }
+  a[D - 1] = -c.g;
+  return a;
+}
 
 // The periodic axes of a validated case as bits (bit a: axis a).
 unsigned periodicAxes(const CaseConfig& c);

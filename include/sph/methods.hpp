@@ -62,11 +62,11 @@ const std::vector<Method<Kernel<D>>>& kernelMethods() {
 inline const std::vector<Method<EquationOfState>>& eosMethods() {
   static const std::vector<Method<EquationOfState>> m = {
       {"linear", "p = k (rho - rho0)", {"k", "rho0"},
-       [](const CaseConfig& c) -> EquationOfState { return LinearEos{c.k, c.rho0}; }},
+       [](const CaseConfig& c) -> EquationOfState { return LinearEos{c.k, c.rho0, c.backgroundPressure}; }},
       {"linear_clamped", "p = max(0, k (rho - rho0)): no tension (Monaghan 2000)", {"k", "rho0"},
        [](const CaseConfig& c) -> EquationOfState { return ClampedLinearEos{c.k, c.rho0}; }},
       {"tait", "p = rho0 c0^2/gamma ((rho/rho0)^gamma - 1) (Batchelor 1967; Monaghan 1994)", {"c0", "gamma", "rho0"},
-       [](const CaseConfig& c) -> EquationOfState { return TaitEos{c.rho0, c.c0, c.gamma}; }},
+       [](const CaseConfig& c) -> EquationOfState { return TaitEos{c.rho0, c.c0, c.gamma, c.backgroundPressure}; }},
       {"polytropic", "p = k rho^(1 + 1/n) (the toy star)", {"k", "polytropic_index"},
        [](const CaseConfig& c) -> EquationOfState { return PolytropicEos{c.k, c.polytropicIndex}; }},
   };
@@ -84,6 +84,14 @@ inline const std::vector<Method<ViscosityChoice>>& viscosityMethods() {
       {"monaghan", "artificial viscosity on approaching pairs (Monaghan 1992)", {"alpha", "beta"},
        [](const CaseConfig& c) -> ViscosityChoice {
          if (c.alpha > 0 || c.beta > 0) return MonaghanViscosityChoice{c.alpha, c.beta};
+         return NoViscosity{};
+       }},
+      {"morris",
+       "laminar viscosity, kinematic viscosity nu: sum m_j (mu_i+mu_j)/(rho_i rho_j) r.gradW/(r^2+0.01h^2) v_ij "
+       "(Morris, Fox & Zhu 1997, eq. 8)",
+       {"nu"},
+       [](const CaseConfig& c) -> ViscosityChoice {
+         if (c.nu > 0) return MorrisViscosityChoice{c.nu};
          return NoViscosity{};
        }},
       {"none", "no viscosity", {}, [](const CaseConfig&) -> ViscosityChoice { return NoViscosity{}; }},
@@ -113,7 +121,7 @@ inline const std::vector<Method<WallTreatment>>& boundaryMethods() {
       {"reflecting", "damped reflecting walls: clamp at distance h, normal velocity -e times itself (the seed's)",
        {"restitution"}, [](const CaseConfig&) { return WallTreatment::kNoParticles; }},
       {"dummy", "dummy wall particles with pressure extrapolated from the fluid (Adami, Hu & Adams 2012)",
-       {"wall_layers", "wall_layers_override", "lid", "wall_slip", "obstacle_min", "obstacle_max"},
+       {"wall_layers", "wall_layers_override", "lid", "lid_velocity", "wall_slip", "obstacle_min", "obstacle_max"},
        [](const CaseConfig&) { return WallTreatment::kDummy; }},
       {"dynamic", "dynamic boundary particles: density by continuity, pressure by the EOS (Crespo et al. 2007)",
        {"wall_layers", "wall_layers_override", "lid", "wall_slip", "obstacle_min", "obstacle_max"},

@@ -10,6 +10,7 @@
 #include "sph/particle_sources.hpp"
 #include "sph/scene.hpp"
 #include "sph/toy_star.hpp"
+#include "sph/wall_particles.hpp"
 
 #include <cmath>
 #include <limits>
@@ -40,11 +41,27 @@ inline Real starLambda(const CaseConfig& c) {
   return c.starMass > 0 ? toyStarLambda(c.dimension, c.starMass, c.starRadius, c.k, c.polytropicIndex) : 0;
 }
 
+// The paddle's motion (case keys paddle, paddle_amplitude, paddle_period),
+// none when the case has none; nFluid: the fluid particles before the walls.
 template <int D>
-Model<D> makeModel(const CaseConfig& c) {
+std::optional<SinusoidalWallMotion<D>> makeWallMotion(const CaseConfig& c, std::size_t nFluid) {
+  if (c.paddle <= 0 || !c.walls || c.boundary == "reflecting") return std::nullopt;
+  const int layers = c.wallLayers > 0 ? static_cast<int>(c.wallLayers) : wallLayersNeeded(c);
+  const auto range = obstacleParticleRange<D>(c, layers, static_cast<std::size_t>(c.paddle - 1));
+  SinusoidalWallMotion<D> m;
+  m.firstId = static_cast<std::int64_t>(nFluid + range.first);
+  m.endId = static_cast<std::int64_t>(nFluid + range.second);
+  m.amplitude = toVec<D>(c.paddleAmplitude);
+  m.period = c.paddlePeriod;
+  return m;
+}
+
+template <int D>
+Model<D> makeModel(const CaseConfig& c, std::optional<SinusoidalWallMotion<D>> wallMotion = std::nullopt) {
   if (c.model == "seed_wcsph") return makeSeedWcsph<D>(SeedWcsphParameters{c.h, c.k, c.rho0, c.mu, c.g});
   WcsphSpec<D> spec{makeKernel<D>(c), makeEos(c), makeViscosity(c), c.rho0, {}, c.xsph};
-  if (c.g != 0) spec.bodies.gravity = UniformGravity<D>{c.g};
+  const Vec<D> g = gravityVector<D>(c);
+  if (!g.isZero()) spec.bodies.gravity = UniformGravity<D>{g};
   if (c.starMass > 0) spec.bodies.star = StarAttraction<D>{starLambda(c)};
   if (c.damping > 0) spec.bodies.damping = LinearDamping<D>{c.damping};
   spec.density = methodRow(densityMethods(), "density", c.density).make(c);
@@ -63,6 +80,7 @@ Model<D> makeModel(const CaseConfig& c) {
   spec.curvature = c.surfaceTension == "muller" ? CurvatureMethod::kMuller : CurvatureMethod::kMorris;
   spec.twoPhase = !c.colourBoxMin.empty() || !c.colourEllipseCenter.empty();
   spec.surfaceThreshold = c.surfaceThreshold;
+  spec.wallMotion = wallMotion;
   return makeWcsph<D>(spec);
 }
 
@@ -93,12 +111,22 @@ Scene<D> makeScene(const CaseConfig& c, InitialState<D> init,
   check.wallParticles = c.walls && c.boundary != "reflecting";
   if (check.wallParticles) check.tolerance = c.spacing / 2;
   check.openTop = check.wallParticles && !c.lid;
+  // (The paddle moves: fluid inside it is not looked for.)
   for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D)
-    check.obstacles.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
+    if (static_cast<long>(k / D) + 1 != c.paddle) check.obstacles.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
                                toVec<D>({c.obstacleMax.begin() + k, c.obstacleMax.begin() + k + D})});
-  Scene<D> scene(std::move(init.particles), makeModel<D>(c), walls, check, TimeStepControl{c.dt, c.cfl, c.endTime},
+  const auto motion = makeWallMotion<D>(c, init.particles.fluidCount());
+  if (motion) {
+    // The paddle's velocity at the start (its particles come at rest).
+    for (std::size_t i = init.particles.fluidCount(); i < init.particles.size(); ++i)
+      if (motion->moves(init.particles.id[i])) init.particles.v[i] = motion->velocity(startTime);
+  }
+  Scene<D> scene(std::move(init.particles), makeModel<D>(c, motion), walls, check, TimeStepControl{c.dt, c.cfl, c.endTime},
                  startTime, makeIntegrator<D>(c.integrator));
   if (periodic.any()) scene.setPeriodic(periodic);
+  if (motion) scene.setWallMotion(*motion);
+  if (c.shifting == "fickian")
+    scene.setShifting(ParticleShifting<D>(makeKernel<D>(c), c.shiftingCoefficient, c.spacing, c.rho0));
   return scene;
 }
 

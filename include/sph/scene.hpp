@@ -19,8 +19,10 @@
 #include "sph/models/wcsph.hpp"
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
+#include "sph/particle_shifting.hpp"
 #include "sph/state_check.hpp"
 #include "sph/time_step.hpp"
+#include "sph/wall_motion.hpp"
 
 #include <cmath>
 #include <limits>
@@ -64,6 +66,10 @@ class Scene {
     grid_.setPeriodic(box);
   }
   const PeriodicBox<D>& periodicBox() const { return periodic_; }
+  // Particle shifting at the start of every step (particle_shifting.hpp).
+  void setShifting(ParticleShifting<D> shifting) { shifting_.emplace(std::move(shifting)); }
+  // A paddle's prescribed motion, moved at the start of every step (wall_motion.hpp).
+  void setWallMotion(const SinusoidalWallMotion<D>& motion) { wallMotion_ = motion; }
 
   // Sort, optionally scale the masses to rho0, and evaluate the model at the
   // initial state. Returns a failure if the initial state is not finite.
@@ -101,6 +107,8 @@ class Scene {
       if (walls_) (*walls_)(P, i);
     };
     std::optional<StateFailure> failure;
+    if (shifting_) shifting_->apply(P_, neighbours_, choice.dt);
+    if (wallMotion_) wallMotion_->advance(P_, time_, time_ + choice.dt);
     std::visit(
         [&](const auto& integrator) {
           integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain);
@@ -213,6 +221,8 @@ class Scene {
   StateCheck<D> check_;
   TimeStepControl timeStep_;
   PeriodicBox<D> periodic_;
+  std::optional<ParticleShifting<D>> shifting_;
+  std::optional<SinusoidalWallMotion<D>> wallMotion_;
   HashGrid<D> grid_;
   NeighbourList<D> neighbours_;
   Real startTime_;

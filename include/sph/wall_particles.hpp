@@ -13,6 +13,7 @@
 
 #include "sph/case_config.hpp"
 
+#include <utility>
 #include <vector>
 
 namespace sph {
@@ -22,5 +23,11 @@ int wallLayersNeeded(const CaseConfig& c);
 
 template <int D>
 std::vector<Vec<D>> wallParticlePositions(const CaseConfig& c, int layers);
+
+// [first, end) of obstacle k's (0-based) particles in
+// wallParticlePositions(c, layers): the walls' ids are the fluid count plus
+// these indices.
+template <int D>
+std::pair<std::size_t, std::size_t> obstacleParticleRange(const CaseConfig& c, int layers, std::size_t k);
 
 }  // namespace sph

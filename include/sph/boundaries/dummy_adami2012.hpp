@@ -24,13 +24,24 @@
 #include "sph/terms/term_bits.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <variant>
 
 namespace sph {
 
+// The wall particles with firstId <= id < endId accelerate with a (a
+// moving paddle); the others are fixed (a_w = 0).
+template <int D>
+struct WallAcceleration {
+  std::int64_t firstId = 0, endId = 0;
+  Vec<D> a = Vec<D>::Zero();
+};
+
 template <int D, class Kernel, class Eos>
 void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, const Eos& eos,
-                        const Vec<D>& bodyAcceleration, bool noSlip, Real rho0) {
+                        const Vec<D>& bodyAcceleration, bool noSlip, Real rho0,
+                        const WallAcceleration<D>& moving = {}) {
+  const Vec<D> movingBody = bodyAcceleration - moving.a;
   neighbours.withSeparation([&](const auto& sep) {
     const std::size_t n = P.size(), nFluid = P.fluidCount();
     const bool withSoundSpeed = !P.c.empty();
@@ -47,7 +58,8 @@ void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, con
       });
       const Vec<D> uw = P.v[w];
       if (sumW > 0) {
-        P.p[w] = std::max(Real(0), (sumPW + bodyAcceleration.dot(sumRhoRW)) / sumW);
+        const bool accelerated = P.id[w] >= moving.firstId && P.id[w] < moving.endId;
+        P.p[w] = std::max(Real(0), (sumPW + (accelerated ? movingBody : bodyAcceleration).dot(sumRhoRW)) / sumW);
         P.rho[w] = eos.density(P.p[w]);
         const Vec<D> vFluid = sumVW / sumW;
         P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;

@@ -44,7 +44,7 @@ Model<D> makeSeedWcsph(const SeedWcsphParameters& prm) {
     info.termNames.push_back("seed_viscosity");
   }
   if (prm.g != 0) {
-    forces.bodies.gravity = UniformGravity<D>{prm.g};
+    forces.bodies.gravity = UniformGravity<D>::down(prm.g);
     info.termNames.push_back("gravity");
   }
   info.bodies = forces.bodies;

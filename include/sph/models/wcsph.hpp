@@ -4,7 +4,7 @@
 //   rho_i = sum_j m_j W(r_ij, h)                               (self term included)
 //   p_i   = EOS(rho_i)                                          (equation_of_state.hpp)
 //   a_i   = - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) grad W     (symmetric_pressure.hpp)
-//           + viscosity (none | laplacian | monaghan)
+//           + viscosity (none | laplacian | monaghan | morris)
 //           [+ artificial pressure, Monaghan 2000]             (artificial_pressure.hpp)
 //           + body forces (gravity -g e_up, star -lambda x, damping -nu v)
 //           [+ colour-field surface tension]                  (colour_surface_tension.hpp)
@@ -20,6 +20,8 @@
 // constructed, and the arrays it would need (sound speed, XSPH correction)
 // never allocated.
 #pragma once
+
+#include <optional>
 
 #include "sph/models/model.hpp"
 
@@ -61,6 +63,7 @@ struct WcsphSpec {
   CurvatureMethod curvature = CurvatureMethod::kMorris;
   bool twoPhase = false;       // colour regions given (else a free surface)
   Real surfaceThreshold = 0.1; // |n| > threshold / h
+  std::optional<SinusoidalWallMotion<D>> wallMotion = std::nullopt;  // a paddle (dummy walls read its a_w)
 };
 
 template <int D>
@@ -81,6 +84,10 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   if (const auto* l = std::get_if<LaplacianViscosityChoice>(&s.viscosity)) {
     info.kinematicViscosity = l->mu / s.restDensity;
     info.termNames.push_back("laplacian_viscosity");
+  }
+  if (const auto* m = std::get_if<MorrisViscosityChoice>(&s.viscosity)) {
+    info.kinematicViscosity = m->nu;
+    info.termNames.push_back("morris_viscosity");
   }
   if (std::holds_alternative<MonaghanViscosityChoice>(s.viscosity)) {
     info.needs |= fieldBit(kFieldC);
@@ -132,7 +139,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
         SummationDensityPass<D>{density, s.eos, s.walls != WallTreatment::kRepulsive, s.clampNegative});
   }
   if (s.walls == WallTreatment::kDummy) {
-    passes.push_back(AdamiWallsPass<D>{s.kernel, s.eos, g, s.noSlip, s.restDensity});
+    passes.push_back(AdamiWallsPass<D>{s.kernel, s.eos, g, s.noSlip, s.restDensity, s.wallMotion});
     info.termNames.push_back("dummy_walls_adami2012");
   }
   if (s.walls == WallTreatment::kDynamic) info.termNames.push_back("dynamic_walls_crespo2007");

@@ -12,6 +12,9 @@
 #include "sph/boundaries/dummy_adami2012.hpp"
 #include "sph/boundaries/repulsive_liu2012.hpp"
 #include "sph/kernels/kernels.hpp"
+#include "sph/wall_motion.hpp"
+
+#include <optional>
 
 #include <variant>
 
@@ -24,10 +27,17 @@ struct AdamiWallsPass {
   Vec<D> bodyAcceleration;  // g (fixed walls: a_w = 0)
   bool noSlip = true;
   Real rho0 = 1000;
+  std::optional<SinusoidalWallMotion<D>> motion;  // a paddle's a_w (wall_motion.hpp)
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    std::visit([&](const auto& k, const auto& e) { extrapolateToWalls(P, neighbours, k, e, bodyAcceleration, noSlip, rho0); },
-               kernel, eos);
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
+    const WallAcceleration<D> moving =
+        motion ? WallAcceleration<D>{motion->firstId, motion->endId, motion->acceleration(ctx.time)}
+               : WallAcceleration<D>{};
+    std::visit(
+        [&](const auto& k, const auto& e) {
+          extrapolateToWalls(P, neighbours, k, e, bodyAcceleration, noSlip, rho0, moving);
+        },
+        kernel, eos);
     return term_bits::kAdamiWalls;
   }
 };

@@ -12,8 +12,9 @@
 // std::visit into one fully inlined loop; the pair loop forms grad W once
 // per pair for all the terms. The terms that are on or off by a coefficient
 // (continuity, diffusion, XSPH) are switched at run time: off, each is one
-// predictable branch per pair, and the loop is compiled 4 kernels x 3
-// viscosities times, not 2^3 times more. With the CSPM gradient correction
+// predictable branch per pair, and the loop is compiled 4 kernels x 4
+// viscosities times (x 2 separations: free space or the minimum image of
+// periodic axes), not 2^3 times more. With the CSPM gradient correction
 // (cspm_correction.hpp; its L_i computed by the pass before this one) the
 // pressure term is CspmPressure and the pair loop corrects the gradient of
 // the pressure and continuity terms: a second instantiation, chosen once
@@ -32,6 +33,7 @@
 #include "sph/terms/density_diffusion.hpp"
 #include "sph/terms/laplacian_viscosity.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
+#include "sph/terms/morris_viscosity.hpp"
 #include "sph/terms/symmetric_pressure.hpp"
 #include "sph/terms/xsph.hpp"
 
@@ -48,7 +50,11 @@ struct LaplacianViscosityChoice {
 struct MonaghanViscosityChoice {
   Real alpha, beta;
 };
-using ViscosityChoice = std::variant<NoViscosity, LaplacianViscosityChoice, MonaghanViscosityChoice>;
+struct MorrisViscosityChoice {
+  Real nu;
+};
+using ViscosityChoice =
+    std::variant<NoViscosity, LaplacianViscosityChoice, MonaghanViscosityChoice, MorrisViscosityChoice>;
 
 // The pair evaluator of a viscosity choice for kernel K (none: an empty
 // pack); kWall: for wall neighbours (their vWall), `on` = false: coefficient 0.
@@ -61,6 +67,10 @@ inline std::tuple<LaplacianViscosity<K, kWall>> viscosityPack(const K& k, Laplac
 template <class K, bool kWall>
 inline std::tuple<MonaghanViscosity<K, kWall>> viscosityPack(const K& k, MonaghanViscosityChoice v, bool on = true) {
   return {MonaghanViscosity<K, kWall>{k, on ? v.alpha : 0, on ? v.beta : 0}};
+}
+template <class K, bool kWall>
+inline std::tuple<MorrisViscosity<K, kWall>> viscosityPack(const K& k, MorrisViscosityChoice v, bool on = true) {
+  return {MorrisViscosity<K, kWall>{k, on ? v.nu : 0}};
 }
 
 template <int D>

@@ -9,6 +9,14 @@
 //   polytropic       p = k rho^(1 + 1/n)                     c^2 = k (1 + 1/n) rho^(1/n)
 //                    (the toy star; Monaghan & Price 2004)
 //
+// linear and tait take a background pressure p_b (key background_pressure,
+// default 0), added to p: a flow without a free surface (a periodic box)
+// then keeps p > 0 where the flow's own pressure is negative, which keeps
+// the particles from clumping under tension (Morris, Fox & Zhu 1997; Adami,
+// Hu & Adams 2013 use it in the transport velocity only). A constant p_b
+// exerts no force on an even particle set; on a disordered one it pushes
+// the particles apart, and it raises the pressure noise in proportion.
+//
 // Each is a small value type; a scene picks one by name and the choice is
 // resolved once per step (std::visit), never per particle. density(p) is
 // the inverse, for wall pressures (Adami 2012) and the hydrostatic start.
@@ -33,10 +41,10 @@ inline Real wholePower(Real x, unsigned e) {
 }
 
 struct LinearEos {
-  Real k, rho0;
-  Real pressure(Real rho) const { return k * (rho - rho0); }
+  Real k, rho0, background = 0;
+  Real pressure(Real rho) const { return k * (rho - rho0) + background; }
   Real soundSpeed(Real) const { return std::sqrt(k); }
-  Real density(Real p) const { return rho0 + p / k; }
+  Real density(Real p) const { return rho0 + (p - background) / k; }
 };
 
 struct ClampedLinearEos {
@@ -47,17 +55,17 @@ struct ClampedLinearEos {
 };
 
 struct TaitEos {
-  TaitEos(Real rho0_, Real c0_, Real gamma_)
-      : rho0(rho0_), c0(c0_), gamma(gamma_), B(rho0_ * c0_ * c0_ / gamma_),
+  TaitEos(Real rho0_, Real c0_, Real gamma_, Real background_ = 0)
+      : rho0(rho0_), c0(c0_), gamma(gamma_), background(background_), B(rho0_ * c0_ * c0_ / gamma_),
         whole(gamma_ == std::round(gamma_) && gamma_ <= 32), g(static_cast<unsigned>(std::lround(gamma_))) {}
-  Real rho0, c0, gamma;
+  Real rho0, c0, gamma, background;
   Real B;       // rho0 c0^2 / gamma
   bool whole;   // gamma is a whole number: powers by multiplication
   unsigned g;
 
   Real pressure(Real rho) const {
     const Real x = rho / rho0;
-    return B * ((whole ? wholePower(x, g) : std::pow(x, gamma)) - 1);
+    return B * ((whole ? wholePower(x, g) : std::pow(x, gamma)) - 1) + background;
   }
   // c = c0 (rho/rho0)^((gamma - 1)/2); an odd gamma gives a whole power.
   Real soundSpeed(Real rho) const {
@@ -65,8 +73,10 @@ struct TaitEos {
     if (whole && g % 2 == 1) return c0 * wholePower(x, (g - 1) / 2);
     return c0 * std::pow(x, (gamma - 1) / 2);
   }
-  // rho = rho0 (1 + p / B)^(1/gamma), for p > -B.
-  Real density(Real p) const { return rho0 * std::pow(std::max(1 + p / B, Real(1e-12)), 1 / gamma); }
+  // rho = rho0 (1 + (p - p_b) / B)^(1/gamma), for p - p_b > -B.
+  Real density(Real p) const {
+    return rho0 * std::pow(std::max(1 + (p - background) / B, Real(1e-12)), 1 / gamma);
+  }
 };
 
 struct PolytropicEos {

@@ -23,7 +23,7 @@ enum : unsigned {
   kAdamiWalls = 1u << 13,
   kDynamicWalls = 1u << 14,
   kRepulsiveWalls = 1u << 15,
-  // 1u << 16 is left to kMorrisViscosity (main); issue 11's bits follow it
+  kMorrisViscosity = 1u << 16,
   kShepardDensity = 1u << 17,  // density re-initialisation, zeroth order
   kMlsDensity = 1u << 18,      // density re-initialisation, first order (MLS)
   kCspmCorrection = 1u << 19,  // the L_i pre-pass
