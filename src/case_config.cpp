@@ -59,6 +59,7 @@ void validateCase(const CaseConfig& c) {
   }
   if (c.eos == "tait") requirePositive("c0", c.c0);
   validateWallsAndDensity(c);
+  validateTension(c);
   validateProbes(c);
   if (c.name.empty() || c.name == "." || c.name == ".." ||
       c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
@@ -149,6 +150,14 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
     owned("nu", {"morris"}, c.viscosity, "viscosity");
     if (c.viscosity != "laplacian") note("mu", "viscosity is " + c.viscosity + "; it applies to viscosity laplacian");
   }
+  if (c.densityReinit == "none")
+    note("density_reinit_every", "density_reinit is none; it applies to density_reinit shepard or mls");
+  if (seed || c.artificialPressure == 0)
+    note("artificial_pressure_n", "artificial_pressure is 0 (off); it applies to artificial_pressure > 0");
+  if (seed || c.surfaceTension == "none")
+    for (const char* key : {"sigma", "surface_threshold", "colour_box_min", "colour_box_max", "colour_ellipse_center",
+                            "colour_ellipse_radii"})
+      note(key, "surface_tension is none; it applies to surface_tension morris or muller");
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
   if (!c.gravity.empty()) note("g", "gravity gives the body acceleration");
   if (c.starMass == 0)
@@ -165,6 +174,7 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
   if (c.initialFlow == "none") note("flow_speed", "initial_flow is none; it applies to initial_flow taylor_green");
   if (c.probePoints.empty() && c.heightProbes.empty() && !c.frontProbe)
     note("probe_interval", "there are no probes (probe_points, height_probes, front_probe)");
+  if (c.probePoints.empty()) note("probe_interpolation", "there are no point probes (probe_points)");
   if (c.outputInterval > 0) note("output_every", "output_interval is used");
   else note("output_interval", "output_interval is off; output_every is used");
   return unused;

@@ -33,7 +33,11 @@ std::vector<std::string> slipNames() { return {"no_slip", "free_slip"}; }
 std::vector<std::string> densityNames() { return methodNames(densityMethods()); }
 std::vector<std::string> diffusionNames() { return {"fourtakas", "molteni"}; }
 std::vector<std::string> negativePressureNames() { return {"none", "clamp"}; }
+std::vector<std::string> densityReinitNames() { return methodNames(densityReinitMethods()); }
+std::vector<std::string> gradientCorrectionNames() { return methodNames(gradientCorrectionMethods()); }
+std::vector<std::string> surfaceTensionNames() { return {"none", "morris", "muller"}; }
 std::vector<std::string> regimeCheckNames() { return {"stop", "warn", "off"}; }
+std::vector<std::string> probeInterpolationNames() { return {"shepard", "plain"}; }
 std::vector<std::string> shiftingNames() { return {"none", "fickian"}; }
 std::vector<std::string> initialFlowNames() { return {"none", "taylor_green"}; }
 
@@ -219,6 +223,33 @@ const std::vector<KeySpec>& caseKeys() {
       {"xsph", G::kPhysics, &C::xsph, "", "XSPH epsilon (model wcsph; 0: off)", within(0, 1), nullptr, nullptr},
       {"damping", G::kPhysics, &C::damping, "1/s", "Linear damping nu in a = -nu v (model wcsph; 0: off)",
        within(0, 1e6), nullptr, nullptr},
+      // Tensile instability and surface tension (model wcsph)
+      {"artificial_pressure", G::kPhysics, &C::artificialPressure, "",
+       "Monaghan (2000) artificial pressure epsilon against the tensile instability: R_ij (W_ij/W(dx))^n added to "
+       "the pressure term (0: off; 0.2 usual; needs spacing)",
+       within(0, 10), nullptr, nullptr},
+      {"artificial_pressure_n", G::kPhysics, &C::artificialPressureN, "",
+       "Exponent n of (W_ij/W(dx))^n in the artificial pressure (4 usual)", count(1, 16), nullptr, nullptr},
+      {"surface_tension", G::kPhysics, &C::surfaceTension, "",
+       "Colour-field surface tension f = sigma kappa grad c: none; morris: kappa = -div(n/|n|) (Morris 2000); "
+       "muller: kappa = -lap c/|n|, f = -sigma lap c n/|n| (Mueller, Charypar & Gross 2003)",
+       {}, nullptr, surfaceTensionNames},
+      {"sigma", G::kPhysics, &C::sigma, "N/m (3D), N (2D, per unit depth)",
+       "Surface tension coefficient (surface_tension morris or muller; must be > 0 then)", within(0, 1e9), nullptr, nullptr},
+      {"surface_threshold", G::kPhysics, &C::surfaceThreshold, "",
+       "The surface force acts where |grad c| > surface_threshold / h (surface_tension morris or muller)", within(0, 100),
+       nullptr, nullptr},
+      {"colour_box_min", G::kScene, &C::colourBoxMin, "m",
+       "Surface tension between two phases: fluid particles inside this box start with colour 1, the rest with "
+       "colour 0 (D values; no colour box or ellipse: every fluid particle has colour 1, a free surface)",
+       coordinate(), "none", nullptr},
+      {"colour_box_max", G::kScene, &C::colourBoxMax, "m", "Upper corner of the colour box (D values)", coordinate(),
+       "none", nullptr},
+      {"colour_ellipse_center", G::kScene, &C::colourEllipseCenter, "m",
+       "Two phases: fluid particles inside this ellipse (ellipsoid) start with colour 1 too (D values)", coordinate(),
+       "none", nullptr},
+      {"colour_ellipse_radii", G::kScene, &C::colourEllipseRadii, "m",
+       "Semi-axes of the colour ellipse along x, y[, z] (equal: a circle or sphere)", within(0, 1e9), "none", nullptr},
       // Numerics
       {"integrator", G::kNumerics, &C::integrator, "", "Time integrator", {}, "leap_frog", integratorNames},
       {"dt", G::kNumerics, &C::dt, "s", "Time step (with cfl > 0: the largest step)", above(0, 1e9), nullptr,
@@ -228,6 +259,17 @@ const std::vector<KeySpec>& caseKeys() {
       {"end_time", G::kNumerics, &C::endTime, "s",
        "Simulated time at which the run ends (absolute: a run continued from a snapshot at t ends there too)",
        above(0, 1e12), nullptr, nullptr},
+      {"density_reinit", G::kNumerics, &C::densityReinit, "",
+       "Density re-initialisation every density_reinit_every steps (model wcsph, density continuity): none, "
+       "shepard (zeroth order: keeps a constant density) or mls (first order, Colagrossi & Landrieu 2003: keeps "
+       "a linear one)",
+       {}, nullptr, densityReinitNames},
+      {"density_reinit_every", G::kNumerics, &C::densityReinitEvery, "", "Steps between two density re-initialisations",
+       count(1, 1e9), nullptr, nullptr},
+      {"gradient_correction", G::kNumerics, &C::gradientCorrection, "",
+       "Kernel gradient correction (model wcsph): none, or cspm (L_i grad W, exact for linear fields, in the "
+       "pressure gradient and the continuity velocity divergence)",
+       {}, nullptr, gradientCorrectionNames},
       {"regime_check", G::kNumerics, &C::regimeCheck, "",
        "Every 10 steps: Mach number above 1, the fluid breaking up (over half its particles alone), particles "
        "collapsing (4x the neighbours), pairing (a warning): stop the run naming the cause, only warn, or off",
@@ -257,6 +299,10 @@ const std::vector<KeySpec>& caseKeys() {
        coordinate(), "none", nullptr},
       {"front_probe", G::kOutput, &C::frontProbe, "", "Write the surge front's x (furthest fluid particle + dx/2) into front.csv",
        {}, nullptr, nullptr},
+      {"probe_interpolation", G::kOutput, &C::probeInterpolation, "",
+       "Point probes: shepard (sum_j A_j V_j W / sum_j V_j W: a constant exactly, also at a surface) or plain "
+       "(sum_j A_j V_j W: the bare SPH sum, low where the support is not full)",
+       {}, nullptr, probeInterpolationNames},
       {"probe_interval", G::kOutput, &C::probeInterval, "s",
        "Probes are sampled every this many seconds of simulated time (0: every step)", within(0, 1e12), "0: every step",
        nullptr},

@@ -83,6 +83,12 @@ void validateWallsAndDensity(const CaseConfig& c) {
       throw CaseError("density, hydrostatic_start, negative_pressure and obstacles need model = \"wcsph\"; "
                       "model seed_wcsph is the seed scheme exactly");
   }
+  if (seed && (c.densityReinit != "none" || c.gradientCorrection != "none"))
+    throw CaseError("density_reinit and gradient_correction need model = \"wcsph\"; model seed_wcsph is the seed "
+                    "scheme exactly");
+  if (c.densityReinit != "none" && c.density != "continuity")
+    throw CaseError("density_reinit = \"" + c.densityReinit + "\" needs density = \"continuity\" (summation "
+                    "density is recomputed from the positions at every step)");
   if (c.backgroundPressure != 0 && (seed || (!c.eos.empty() && c.eos != "linear" && c.eos != "tait")))
     throw CaseError("background_pressure = " + number(c.backgroundPressure) +
                     " needs model = \"wcsph\" with eos = \"linear\" or \"tait\"");
@@ -159,6 +165,32 @@ void validateWallsAndDensity(const CaseConfig& c) {
                       ") needs " + std::to_string(needed) +
                       " layers (give wall_layers_override = true to run with fewer, and see the fluid leak)");
   }
+}
+
+void validateTension(const CaseConfig& c) {
+  const bool seed = c.model == "seed_wcsph";
+  if (seed && (c.artificialPressure != 0 || c.surfaceTension != "none"))
+    throw CaseError("artificial_pressure and surface_tension need model = \"wcsph\"; model seed_wcsph is the seed "
+                    "scheme exactly");
+  if (c.artificialPressure > 0 && !(c.spacing > 0))
+    throw CaseError("artificial_pressure = " + std::to_string(c.artificialPressure) +
+                    " needs spacing (> 0): its f_ij = W(r_ij)/W(dx) is relative to the particle spacing dx");
+  if (c.surfaceTension != "none" && !(c.sigma > 0))
+    throw CaseError("surface_tension = \"" + c.surfaceTension + "\" needs sigma > 0 (N/m in 3D, N per unit depth in 2D)");
+  const std::size_t D = static_cast<std::size_t>(c.dimension);
+  if (c.colourBoxMin.size() != c.colourBoxMax.size() || (!c.colourBoxMin.empty() && c.colourBoxMin.size() != D))
+    throw CaseError("colour_box_min and colour_box_max need " + std::to_string(D) +
+                    " values each, or neither is given (they have " + std::to_string(c.colourBoxMin.size()) +
+                    " and " + std::to_string(c.colourBoxMax.size()) + ")");
+  for (std::size_t d = 0; d < c.colourBoxMin.size(); ++d)
+    if (!(c.colourBoxMax[d] > c.colourBoxMin[d]))
+      throw CaseError("colour_box_max must exceed colour_box_min in every dimension");
+  if (c.colourEllipseCenter.size() != c.colourEllipseRadii.size() ||
+      (!c.colourEllipseCenter.empty() && c.colourEllipseCenter.size() != D))
+    throw CaseError("colour_ellipse_center and colour_ellipse_radii need " + std::to_string(D) +
+                    " values each, or neither is given");
+  for (Real r : c.colourEllipseRadii)
+    if (!(r > 0)) throw CaseError("colour_ellipse_radii must all be > 0");
 }
 
 }  // namespace sph

@@ -321,6 +321,23 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   // (compressing densities alone would leave the pressure gradient short by
   // rho/rho0). Summation density and the seed recompute rho anyway.
   std::fill(P.rho.begin(), P.rho.end(), c.rho0);
+  // Colour of the surface-tension phase: 1 inside the colour box or the
+  // colour ellipse (everywhere when neither is given), 0 outside and for walls.
+  if (wcsph && c.surfaceTension != "none") {
+    P.colour.assign(P.size(), 0);
+    const bool box = !c.colourBoxMin.empty(), ellipse = !c.colourEllipseCenter.empty();
+    for (std::size_t i = 0; i < nFluid; ++i) {
+      bool inBox = box, inEllipse = ellipse;
+      Real e = 0;
+      for (std::size_t d = 0; d < static_cast<std::size_t>(D); ++d) {
+        const Real x = P.x[i][static_cast<int>(d)];
+        if (box) inBox &= x >= c.colourBoxMin[d] && x <= c.colourBoxMax[d];
+        if (ellipse) e += std::pow((x - c.colourEllipseCenter[d]) / c.colourEllipseRadii[d], 2);
+      }
+      if (ellipse) inEllipse = e <= 1;
+      P.colour[i] = (!box && !ellipse) || inBox || inEllipse ? 1 : 0;
+    }
+  }
   if (wcsph && c.hydrostaticStart) {
     const CaseConfig resolved = withDefaults(c);
     const EquationOfState eos = findMethod(eosMethods(), resolved.eos)->make(resolved);
@@ -378,6 +395,7 @@ InitialState<D> resumeState(const std::string& snapshot) {
   }
   // The rates the integrator carries into its next step.
   if (!f.drho.empty()) P.drho = f.drho;
+  if (!f.colour.empty()) P.colour = f.colour;  // surface tension: the phases as they were
   if (!f.vXsph.empty())
     for (const auto& w : f.vXsph) P.vXsph.push_back(vec(w));
   s.massesGiven = true;

@@ -632,6 +632,20 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
                   stepSeconds, record.particleStepsPerSecond, threads.c_str(), scene.meanNeighbours(),
                   output.seriesPath().c_str(), output.count());
     out << buf;
+    // The kernel corrections: what they did in this process (a resumed
+    // run counts from its resume).
+    const CorrectionCounts& cc = scene.model().correctionCounts();
+    if (c.gradientCorrection != "none")
+      out << "  cspm             " << cc.cspmFallbacks << " of " << cc.cspmParticles
+          << " particle-evaluations fell back to the uncorrected gradient ("
+          << shortestDecimal(cc.cspmParticles ? 100.0 * static_cast<double>(cc.cspmFallbacks) / static_cast<double>(cc.cspmParticles) : 0.0)
+          << "%)\n";
+    if (c.densityReinit != "none") {
+      out << "  density reinit   " << c.densityReinit << " every " << c.densityReinitEvery << " steps: " << cc.reinitSteps
+          << " times, " << cc.reinitParticles << " particle re-initialisations";
+      if (c.densityReinit == "mls") out << ", " << cc.mlsFallbacks << " left to Shepard (singular moment matrix)";
+      out << "\n";
+    }
     if (signal != 0 && record.status == "interrupted")
       err << "sph: stopped at step " << scene.stepIndex() << ", t = " << shortestDecimal(scene.time())
           << " s (" << (signal == SIGINT ? "SIGINT" : "SIGTERM") << "); continue with: sph run --resume " << c.output

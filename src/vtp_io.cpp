@@ -121,7 +121,7 @@ void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo
     using T = typename std::decay_t<decltype(field)>::value_type;
     if constexpr (std::is_same_v<T, Vec<D>>) pd->AddArray(vectorArray<D>(f.vtkName, field));
     else if constexpr (std::is_same_v<T, Real>) pd->AddArray(scalarArray(f.vtkName, field));
-    else pd->AddArray(integerArray(f.vtkName, field));
+    else if constexpr (std::is_integral_v<T>) pd->AddArray(integerArray(f.vtkName, field));
   });
   pd->SetActiveScalars("pressure");
 

@@ -315,6 +315,7 @@ struct Layout {
   bool velocity = false, mass = false, id = false, time = false;
   // The arrays a resume reads besides (the state an integrator carries).
   bool acceleration = false, density = false, densityRate = false, xsph = false, kind = false, step = false;
+  bool colour = false;
 };
 
 const Element* onlyChild(const Header& h, const Element& parent, const std::string& name, bool required,
@@ -450,7 +451,7 @@ Layout checkLayout(const std::string& path) {
       const std::pair<const char*, bool*> known[] = {
           {"velocity", &L.velocity},       {"mass", &L.mass},        {"id", &L.id},
           {"acceleration", &L.acceleration}, {"density", &L.density}, {"density_rate", &L.densityRate},
-          {"xsph_velocity", &L.xsph},      {"kind", &L.kind}};
+          {"xsph_velocity", &L.xsph},      {"kind", &L.kind},       {"colour", &L.colour}};
       for (const auto& [known_name, seen] : known) {
         if (name != known_name) continue;
         if (*seen) throw Problem("has two point arrays named \"" + name + "\"");
@@ -458,7 +459,7 @@ Layout checkLayout(const std::string& path) {
       }
       if (name == "velocity" || name == "acceleration" || name == "xsph_velocity")
         require(isFloatType(arrayType) && components == 3, "type Float32 or Float64 and 3 components");
-      if (name == "mass" || name == "density" || name == "density_rate")
+      if (name == "mass" || name == "density" || name == "density_rate" || name == "colour")
         require(isFloatType(arrayType) && components == 1, "type Float32 or Float64 and 1 component");
       if (name == "id" || name == "kind") require(!isFloatType(arrayType) && components == 1, "an integer type and 1 component");
     }
@@ -554,7 +555,8 @@ VtpParticles readChecked(const std::string& path) {
   quiet.check();
   vtkDataArraySelection* arrays = reader->GetPointDataArraySelection();
   arrays->DisableAllArrays();
-  for (const char* name : {"velocity", "mass", "id", "acceleration", "density", "density_rate", "xsph_velocity", "kind"})
+  for (const char* name : {"velocity", "mass", "id", "acceleration", "density", "density_rate", "xsph_velocity", "kind",
+                           "colour"})
     arrays->EnableArray(name);
   reader->GetCellDataArraySelection()->DisableAllArrays();
   reader->Update();
@@ -636,6 +638,7 @@ VtpParticles readChecked(const std::string& path) {
   readVectors(L.xsph, "xsph_velocity", out.vXsph);
   readScalars(L.density, "density", out.rho);
   readScalars(L.densityRate, "density_rate", out.drho);
+  readScalars(L.colour, "colour", out.colour);
   if (L.kind) {
     vtkDataArray* k = pointArray("kind", 1);
     out.kind.resize(count);

@@ -157,4 +157,50 @@ BOOST_AUTO_TEST_CASE(walls_and_continuity_cost_nothing_when_off) {
   BOOST_TEST((executed(dynamic) & kDynamicWalls) != 0u);
 }
 
+// Kernel corrections: off, no field, no pass, no bit, and the symmetric
+// pressure; each on brings exactly its field and its passes.
+BOOST_AUTO_TEST_CASE(kernel_corrections_cost_nothing_when_off) {
+  CaseConfig c = block(2);
+  c.density = "continuity";
+  const Scene<2> off = [&] {
+    Scene<2> s = test::sceneOf<2>(c);
+    BOOST_REQUIRE(!s.step());
+    return s;
+  }();
+  const std::size_t n = off.particles().size();
+  BOOST_TEST(off.particles().rhoReinit.empty());
+  BOOST_TEST(off.particles().cspmL.empty());
+  BOOST_TEST(off.model().afterStepPasses().empty());
+  BOOST_TEST((executed(off) & (kShepardDensity | kMlsDensity | kCspmCorrection | kCspmPressure)) == 0u);
+  BOOST_TEST((executed(off) & kSymmetricPressure) != 0u);
+  const std::size_t bytesOff = off.particles().bytesAllocated();
+
+  for (const char* reinit : {"shepard", "mls"}) {
+    CaseConfig r = c;
+    r.densityReinit = reinit;
+    r.densityReinitEvery = 1;
+    Scene<2> s = test::sceneOf<2>(r);
+    BOOST_REQUIRE(!s.step());
+    const unsigned bit = std::string(reinit) == "shepard" ? kShepardDensity : kMlsDensity;
+    BOOST_TEST((executed(s) & bit) != 0u);
+    BOOST_TEST((executed(s) & (kShepardDensity | kMlsDensity) & ~bit) == 0u);
+    BOOST_TEST((executed(s) & (kCspmCorrection | kCspmPressure)) == 0u);
+    BOOST_TEST(s.particles().rhoReinit.size() == n);
+    BOOST_TEST(s.particles().cspmL.empty());
+    BOOST_TEST(s.particles().bytesAllocated() - bytesOff == n * sizeof(Real));
+    BOOST_TEST(s.model().correctionCounts().reinitSteps == 1);
+  }
+
+  CaseConfig g = c;
+  g.gradientCorrection = "cspm";
+  Scene<2> s = test::sceneOf<2>(g);
+  BOOST_REQUIRE(!s.step());
+  BOOST_TEST((executed(s) & (kCspmCorrection | kCspmPressure)) == (kCspmCorrection | kCspmPressure));
+  BOOST_TEST((executed(s) & (kSymmetricPressure | kShepardDensity | kMlsDensity)) == 0u);
+  BOOST_TEST(s.particles().cspmL.size() == n);
+  BOOST_TEST(s.particles().rhoReinit.empty());
+  BOOST_TEST(s.particles().bytesAllocated() - bytesOff == n * sizeof(Mat<2>));
+  BOOST_TEST(s.model().afterStepPasses().empty());
+}
+
 BOOST_AUTO_TEST_SUITE_END()

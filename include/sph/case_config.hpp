@@ -62,6 +62,11 @@ struct CaseConfig {
   std::string initialFlow = "none";     // none | taylor_green (initial velocity and pressure field)
   Real flowSpeed = 1;                   // U of the initial flow
 
+  // kernel corrections (model wcsph)
+  std::string densityReinit = "none";      // none | shepard | mls
+  long densityReinitEvery = 20;            // steps between two re-initialisations
+  std::string gradientCorrection = "none"; // none | cspm
+
   // wcsph: choices by name ("" = the model's default)
   std::string kernel;       // cubic_spline | wendland_c2 | gaussian | muller
   std::string eos;          // linear | linear_clamped | tait | polytropic
@@ -74,6 +79,13 @@ struct CaseConfig {
   Real nu = 1e-6;           // kinematic viscosity (viscosity morris)
   Real xsph = 0;            // XSPH epsilon (0: off)
   Real damping = 0;         // nu in a = -nu v (0: off)
+  Real artificialPressure = 0;   // Monaghan 2000 artificial pressure epsilon (0: off)
+  long artificialPressureN = 4;  // its exponent n in f_ij^n
+  std::string surfaceTension = "none";  // none | morris | muller (colour-field force, terms/colour_surface_tension.hpp)
+  Real sigma = 0;                // surface tension coefficient [N/m in 3D, N in 2D per unit depth]
+  Real surfaceThreshold = 0.1;   // the force acts where |grad c| > surface_threshold / h
+  std::vector<Real> colourBoxMin, colourBoxMax;  // particles inside start with colour 1, the rest 0
+  std::vector<Real> colourEllipseCenter, colourEllipseRadii;  // ... or inside this ellipse (ellipsoid)
 
   // toy star(s)
   Real starMass = 0;                // M (0: no star)
@@ -96,6 +108,7 @@ struct CaseConfig {
   std::string probeNames;          // "a, b, ...": one name per point probe
   std::vector<Real> heightProbes;  // D - 1 horizontal coordinates per water-height gauge
   bool frontProbe = false;         // the surge front's x
+  std::string probeInterpolation = "shepard";  // shepard | plain
   Real probeInterval = 0;          // seconds of simulated time between samples; 0: every step
 
   // regime check (sph/regime_check.hpp): stop | warn | off
@@ -143,6 +156,8 @@ void validateCase(const CaseConfig& c);
 
 // The wall-particle and density keys (src/case_physics.cpp), part of validateCase.
 void validateWallsAndDensity(const CaseConfig& c);
+// The artificial-pressure and surface-tension keys (src/case_physics.cpp), part of validateCase.
+void validateTension(const CaseConfig& c);
 
 // The fluid bodies: blocks, discs, their velocities, overlaps and the
 // particle count (src/case_bodies.cpp), part of validateCase.

@@ -44,6 +44,11 @@ enum FieldId : unsigned {
   kFieldDx,        // RK4: weighted sums of the stage derivatives
   kFieldDv,
   kFieldDrhoSum,
+  kFieldRhoReinit, // density re-initialisation (Shepard, MLS): the new densities, before they replace rho
+  kFieldCspmL,     // CSPM gradient correction L_i (D x D)
+  kFieldColour,    // colour (phase) of a fluid particle: 1 in the phase with surface tension, 0 outside
+  kFieldColourNormal,     // colour-field normal n = grad c (surface tension)
+  kFieldCurvature,        // curvature kappa of the colour field's surface (surface tension)
   kFieldCount
 };
 
@@ -84,6 +89,11 @@ inline constexpr FieldInfo kFieldTable[kFieldCount] = {
     {kFieldDx, "dx", FieldRole::kStage, nullptr},
     {kFieldDv, "dv", FieldRole::kStage, nullptr},
     {kFieldDrhoSum, "drhoSum", FieldRole::kStage, nullptr},
+    {kFieldRhoReinit, "rhoReinit", FieldRole::kDerived, nullptr},
+    {kFieldCspmL, "cspmL", FieldRole::kDerived, nullptr},
+    {kFieldColour, "colour", FieldRole::kState, "colour"},
+    {kFieldColourNormal, "colourNormal", FieldRole::kDerived, "colour_normal"},
+    {kFieldCurvature, "curvature", FieldRole::kDerived, "curvature"},
 };
 
 constexpr bool isPermuted(FieldRole r) { return r == FieldRole::kState || r == FieldRole::kStage; }

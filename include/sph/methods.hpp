@@ -142,6 +142,29 @@ inline const std::vector<Method<DensityTreatment>>& densityMethods() {
   return m;
 }
 
+// Kernel corrections (seed document 004). Density re-initialisation every
+// density_reinit_every steps, and the gradient correction.
+inline const std::vector<Method<DensityReinit>>& densityReinitMethods() {
+  static const std::vector<Method<DensityReinit>> m = {
+      {"none", "no re-initialisation", {}, [](const CaseConfig&) { return DensityReinit::kNone; }},
+      {"shepard", "rho_i = sum m_j W_ij / sum (m_j/rho_j) W_ij: zeroth order (Shepard 1968)",
+       {"density_reinit_every"}, [](const CaseConfig&) { return DensityReinit::kShepard; }},
+      {"mls", "rho_i = sum m_j W^MLS_ij, the first-order moving-least-squares kernel (Colagrossi & Landrieu 2003)",
+       {"density_reinit_every"}, [](const CaseConfig&) { return DensityReinit::kMls; }},
+  };
+  return m;
+}
+
+inline const std::vector<Method<bool>>& gradientCorrectionMethods() {
+  static const std::vector<Method<bool>> m = {
+      {"none", "grad W as it is", {}, [](const CaseConfig&) { return false; }},
+      {"cspm", "L_i grad W with L_i = [sum V_k (x_k - x_i) (x) grad W_ik]^-1 in pressure and continuity "
+               "(Chen, Beraun & Carney 1999; Bonet & Lok 1999)",
+       {}, [](const CaseConfig&) { return true; }},
+  };
+  return m;
+}
+
 struct ModelRow {
   const char* name;
   const char* summary;

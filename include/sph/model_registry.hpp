@@ -71,6 +71,15 @@ Model<D> makeModel(const CaseConfig& c, std::optional<SinusoidalWallMotion<D>> w
   spec.noSlip = c.wallSlip == "no_slip";
   spec.spacing = c.spacing;
   spec.clampNegative = c.negativePressure == "clamp";
+  spec.reinit = methodRow(densityReinitMethods(), "density_reinit", c.densityReinit).make(c);
+  spec.reinitEvery = c.densityReinitEvery;
+  spec.cspm = methodRow(gradientCorrectionMethods(), "gradient_correction", c.gradientCorrection).make(c);
+  spec.artificialPressure = c.artificialPressure;
+  spec.artificialPressureN = static_cast<int>(c.artificialPressureN);
+  if (c.surfaceTension != "none") spec.surfaceTension = c.sigma;
+  spec.curvature = c.surfaceTension == "muller" ? CurvatureMethod::kMuller : CurvatureMethod::kMorris;
+  spec.twoPhase = !c.colourBoxMin.empty() || !c.colourEllipseCenter.empty();
+  spec.surfaceThreshold = c.surfaceThreshold;
   spec.wallMotion = wallMotion;
   return makeWcsph<D>(spec);
 }

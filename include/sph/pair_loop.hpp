@@ -19,6 +19,10 @@
 // that a case does not enable is not in the pack.
 // Gather form: particle i writes only its own rates (no atomics, results
 // independent of the thread count).
+// A gradient correction (passes/cspm_correction.hpp) gives the pair its
+// corrected gradient gradWC = L_i grad_i W, used by the first-derivative
+// terms (pressure, continuity); without one (NoGradientCorrection) gradWC
+// is grad W itself and the compiler keeps one value.
 //
 // Periodic axes: r_ij is the minimum image (periodic_box.hpp). The
 // separation is chosen once per loop (NeighbourList::withSeparation), so a
@@ -51,6 +55,14 @@ struct Pair {
   Real q;        // r / support
   Real dWdr_r;   // (dW/dr) / r, so that grad_i W = dWdr_r rij (0 without a kernel)
   Vec<D> gradW;  // grad_i W(r_ij)
+  Vec<D> gradWC; // corrected grad_i W (the pressure and continuity terms); = gradW without a correction
+};
+
+// No gradient correction: gradWC = gradW.
+struct NoGradientCorrection {
+  static constexpr bool kCorrects = false;
+  template <int D>
+  const Vec<D>& operator()(std::uint32_t, const Vec<D>& gradW) const { return gradW; }
 };
 
 template <int D>
@@ -96,9 +108,10 @@ inline void addPair(const Pack& pack, const Pair<D>& c, const Particles<D>& P, P
 
 // Fill in r, q and the kernel terms of the pair (i, j); `sep` forms r_ij
 // (FreeSpace or MinimumImage).
-template <int D, class Kernel, class Sep = FreeSpace>
+// `correct` gives the corrected gradient gradWC.
+template <int D, class Kernel, class Sep = FreeSpace, class Correction = NoGradientCorrection>
 inline Pair<D> makePair(std::uint32_t i, std::uint32_t j, const Vec<D>& xi, const Vec<D>& xj,
-                        const Kernel& kernel, Real invSupport, const Sep& sep = {}) {
+                        const Kernel& kernel, Real invSupport, const Sep& sep = {}, const Correction& correct = {}) {
   Pair<D> c;
   c.i = i;
   c.j = j;
@@ -111,9 +124,11 @@ inline Pair<D> makePair(std::uint32_t i, std::uint32_t j, const Vec<D>& xi, cons
     const Real r = c.r > 0 ? c.r : 1e-9 * kernel.h();
     c.dWdr_r = kernel.dWdr(r) / r;
     c.gradW = c.r > 0 ? Vec<D>(c.dWdr_r * c.rij) : Vec<D>::Zero();
+    c.gradWC = correct(i, c.gradW);
   } else {
     c.dWdr_r = 0;
     c.gradW = Vec<D>::Zero();
+    c.gradWC = c.gradW;
   }
   return c;
 }
@@ -126,11 +141,12 @@ struct PairLoopParts {
 
 // runPairLoop with the separation chosen.
 template <int D, class Kernel, class FluidPairs, class WallPairs, class WallParticlePairs, class Epilogue,
-          class WallEpilogue, class Sep>
+          class WallEpilogue, class Sep, class Correction>
 unsigned runPairLoopWith(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
                          const FluidPairs& fluidPairs, const WallPairs& wallPairs,
                          const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
-                         const WallEpilogue& wallEpilogue, PairLoopParts parts, const Sep& sep) {
+                         const WallEpilogue& wallEpilogue, PairLoopParts parts, const Sep& sep,
+                         const Correction& correct) {
   const std::size_t n = P.size(), nFluid = P.fluidCount();
   const Real invSupport = 1 / support;
   const bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0 && parts.wallParticles && P.hasWalls();
@@ -141,10 +157,10 @@ unsigned runPairLoopWith(Particles<D>& P, const NeighbourList<D>& neighbours, co
       PairRates<D> r;
       const Vec<D> xi = P.x[i];
       const auto ii = static_cast<std::uint32_t>(i);
-      auto fluid = [&](std::uint32_t j) { addPair(fluidPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, sep), P, r); };
+      auto fluid = [&](std::uint32_t j) { addPair(fluidPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, sep, correct), P, r); };
       if constexpr (decltype(byKind)::value)
         neighbours.forEachByKind(i, fluid, [&](std::uint32_t j) {
-          addPair(wallPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, sep), P, r);
+          addPair(wallPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, sep, correct), P, r);
         });
       else
         neighbours.forEach(i, fluid);
@@ -178,15 +194,17 @@ unsigned runPairLoopWith(Particles<D>& P, const NeighbourList<D>& neighbours, co
 // Returns the term bits of the packs it ran.
 //   epilogue(i, P, rates)       writes particle i's rates (fluid particles)
 //   wallEpilogue(i, P, rates)   the same for wall particles
+// `correct` corrects the gradients of the fluid particles' pairs (wall
+// particles' own rates use grad W as it is).
 template <int D, class Kernel, class FluidPairs, class WallPairs, class WallParticlePairs, class Epilogue,
-          class WallEpilogue>
+          class WallEpilogue, class Correction = NoGradientCorrection>
 unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
                      const FluidPairs& fluidPairs, const WallPairs& wallPairs,
                      const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
-                     const WallEpilogue& wallEpilogue, PairLoopParts parts = {}) {
+                     const WallEpilogue& wallEpilogue, PairLoopParts parts = {}, const Correction& correct = {}) {
   return neighbours.withSeparation([&](const auto& sep) {
     return runPairLoopWith(P, neighbours, kernel, support, fluidPairs, wallPairs, wallParticlePairs, epilogue,
-                           wallEpilogue, parts, sep);
+                           wallEpilogue, parts, sep, correct);
   });
 }
 

@@ -40,6 +40,11 @@ struct FieldArrays {
   std::vector<Real> rho0;
   std::vector<Vec<D>> dx, dv;
   std::vector<Real> drhoSum;
+  std::vector<Real> rhoReinit;
+  std::vector<Mat<D>> cspmL;
+  std::vector<Real> colour;
+  std::vector<Vec<D>> colourNormal;
+  std::vector<Real> curvature;
 
   // f(info, field of s0, field of s1, ...) for every row of the table, in
   // table order: the one place that lists the members.
@@ -65,6 +70,11 @@ struct FieldArrays {
     f(kFieldTable[kFieldDx], s.dx...);
     f(kFieldTable[kFieldDv], s.dv...);
     f(kFieldTable[kFieldDrhoSum], s.drhoSum...);
+    f(kFieldTable[kFieldRhoReinit], s.rhoReinit...);
+    f(kFieldTable[kFieldCspmL], s.cspmL...);
+    f(kFieldTable[kFieldColour], s.colour...);
+    f(kFieldTable[kFieldColourNormal], s.colourNormal...);
+    f(kFieldTable[kFieldCurvature], s.curvature...);
   }
 
   // Call f(info, array) for every field.
@@ -98,7 +108,7 @@ struct FieldArrays {
 
   template <class T>
   static T zero() {
-    if constexpr (std::is_same_v<T, Vec<D>>) return Vec<D>::Zero();
+    if constexpr (std::is_same_v<T, Vec<D>> || std::is_same_v<T, Mat<D>>) return T::Zero();
     else return T(0);
   }
 };

@@ -8,6 +8,10 @@
 //                      Liu & Liu, Smoothed Particle Hydrodynamics, 2003, 4.4).
 //                      A probe with sum_j V_j W < 0.1 sum over a full
 //                      lattice is dry: its values are written as nan.
+//                      probe_interpolation = plain: the sum without the
+//                      normalisation, A(x) = sum_j A_j V_j W(|x - x_j|)
+//                      (what an SPH sum reads: ~ half the value at a free
+//                      surface or a wall, where the support is half empty).
 //   water height at x: the highest fluid particle within dx of the gauge's
 //                      vertical line, plus dx/2 (its top; the same rule as
 //                      validation/observables.py), 0 when none is there.
@@ -39,7 +43,7 @@ struct ProbeValues {
 
 template <int D>
 ProbeValues<D> interpolateAt(const Particles<D>& P, const Kernel<D>& kernel, const Vec<D>& x, Real dryWeight,
-                             const PeriodicBox<D>& box = {}) {
+                             const PeriodicBox<D>& box = {}, bool shepard = true) {
   return std::visit(
       [&](const auto& W) {
         ProbeValues<D> out;
@@ -56,7 +60,7 @@ ProbeValues<D> interpolateAt(const Particles<D>& P, const Kernel<D>& kernel, con
           out.velocity += w * P.v[j];
         }
         out.wet = weight > dryWeight && weight > 0;
-        if (out.wet) {
+        if (out.wet && shepard) {
           out.pressure /= weight;
           out.density /= weight;
           out.velocity /= weight;

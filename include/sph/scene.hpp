@@ -7,7 +7,8 @@
 // needs: 1 for leap-frog and the Euler schemes, 4 for RK4; the walls act on
 // each particle right after its position update), then one loop that
 // finishes every particle, checks the state and reduces what the next time
-// step needs. The integrator is a variant resolved once per step.
+// step needs; then the model's after-step passes (density re-initialisation)
+// act on the finished state. The integrator is a variant resolved once per step.
 #pragma once
 
 #include "sph/boundaries/damped_reflecting_walls.hpp"
@@ -114,6 +115,7 @@ class Scene {
           failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
         },
         integrator_);
+    if (!failure) model_.afterStep(P_, neighbours_, context_);
     ++step_;
     // A step cut to land on end_time or an output time ends exactly there
     // (time + (t - time) can miss t by one ulp).

@@ -15,6 +15,10 @@ using Real = double;
 template <int D>
 using Vec = Eigen::Matrix<Real, D, 1>;
 
+// D x D matrix (the CSPM correction L_i).
+template <int D>
+using Mat = Eigen::Matrix<Real, D, D>;
+
 template <int D>
 using IVec = Eigen::Matrix<std::int64_t, D, 1>;
 

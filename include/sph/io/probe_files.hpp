@@ -35,7 +35,8 @@ template <int D>
 class ProbeFiles {
  public:
   ProbeFiles(const CaseConfig& c, const Kernel<D>& kernel)
-      : kernel_(kernel), dx_(c.spacing), interval_(c.probeInterval), heights_(c.heightProbes), front_(c.frontProbe) {
+      : kernel_(kernel), dx_(c.spacing), interval_(c.probeInterval), heights_(c.heightProbes), front_(c.frontProbe),
+        shepard_(c.probeInterpolation != "plain") {
     if (c.domainMin.size() == D && c.domainMax.size() == D) {
       for (int d = 0; d < D; ++d) {
         box_.lo[d] = c.domainMin[static_cast<std::size_t>(d)];
@@ -82,7 +83,7 @@ class ProbeFiles {
     if (!points_.empty()) {
       pointText_ += timeText;
       for (const auto& x : points_) {
-        const ProbeValues<D> v = interpolateAt(P, kernel_, x, kDryWeight, box_);
+        const ProbeValues<D> v = interpolateAt(P, kernel_, x, kDryWeight, box_, shepard_);
         pointText_ += "," + value(v.wet, v.pressure) + "," + value(v.wet, v.density);
         for (int d = 0; d < D; ++d) pointText_ += "," + value(v.wet, v.velocity[d]);
       }
@@ -139,6 +140,7 @@ class ProbeFiles {
   std::vector<std::string> names_;
   std::vector<Real> heights_;
   bool front_;
+  bool shepard_;  // probe_interpolation: shepard (default) or plain
   Real next_ = 0;
   std::string pointText_, heightText_, frontText_;
 };

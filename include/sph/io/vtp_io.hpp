@@ -42,6 +42,7 @@ struct VtpParticles {
   std::vector<std::array<Real, 3>> a, vXsph;
   std::vector<Real> rho, drho;
   std::vector<std::uint8_t> kind;
+  std::vector<Real> colour;      // surface tension: the particles' phase colour
 };
 
 // Reads the particles of a .vtp (src/vtp_read.cpp): one PolyData piece with

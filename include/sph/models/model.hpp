@@ -5,7 +5,9 @@
 // between two passes sits sync(), the hook where a ghost or halo refresh
 // will go (a no-op today). A pass is one of the value types of passes.hpp
 // and reports the term bits it ran, so a test can show that a switched-off
-// term never runs. The presets that build the lists are in seed_wcsph.hpp
+// term never runs. A second, usually empty, list runs after a step on the
+// finished state (afterStep: the density re-initialisations), and the
+// passes add what the kernel corrections did to the model's counts. The presets that build the lists are in seed_wcsph.hpp
 // and wcsph.hpp.
 //
 // Besides its passes a model knows what the rest of the scene asks of it:
@@ -38,17 +40,21 @@ class Model {
     std::vector<std::string> termNames;
   };
 
-  Model(Info info, std::vector<Pass<D>> passes) : info_(std::move(info)), passes_(std::move(passes)) {}
+  Model(Info info, std::vector<Pass<D>> passes, std::vector<Pass<D>> afterStep = {})
+      : info_(std::move(info)), passes_(std::move(passes)), afterStep_(std::move(afterStep)) {}
 
   // rho (or its rate), p, a and the other rates at the current state. The
   // neighbour list must have been built on these positions.
   void evaluate(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-    unsigned ran = 0;
-    for (const Pass<D>& pass : passes_) {
-      ran |= std::visit([&](const auto& p) { return p.run(P, neighbours, ctx); }, pass);
-      sync(P);
-    }
-    executed_ = ran;
+    executed_ = runPasses(passes_, P, neighbours, ctx);
+    executedAfterStep_ = 0;
+  }
+
+  // After step ctx.step has finished (the state check passed): the passes
+  // that act on the finished state, with the neighbour list of the step's
+  // last evaluation.
+  void afterStep(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
+    if (!afterStep_.empty()) executedAfterStep_ = runPasses(afterStep_, P, neighbours, ctx);
   }
 
   // Density alone (the summation-density pass), for the seed's mass scaling.
@@ -67,8 +73,11 @@ class Model {
   FieldSet needs() const { return info_.needs; }
   const std::vector<std::string>& termNames() const { return info_.termNames; }
   const std::vector<Pass<D>>& passes() const { return passes_; }
-  // The term bits the last evaluate() ran (term_bits.hpp).
-  unsigned executedTerms() const { return executed_; }
+  const std::vector<Pass<D>>& afterStepPasses() const { return afterStep_; }
+  // The term bits the last evaluate() and the afterStep() after it ran (term_bits.hpp).
+  unsigned executedTerms() const { return executed_ | executedAfterStep_; }
+  // What the kernel corrections did so far (step_context.hpp).
+  const CorrectionCounts& correctionCounts() const { return counts_; }
 
   Real potentialEnergy(const Particles<D>& P) const { return info_.bodies.potential(P); }
 
@@ -84,9 +93,22 @@ class Model {
   // Between passes: where ghost particles or MPI halos will be refreshed.
   void sync(Particles<D>&) const {}
 
+  unsigned runPasses(const std::vector<Pass<D>>& passes, Particles<D>& P, const NeighbourList<D>& neighbours,
+                     StepContext ctx) const {
+    ctx.counts = &counts_;
+    unsigned ran = 0;
+    for (const Pass<D>& pass : passes) {
+      ran |= std::visit([&](const auto& p) { return p.run(P, neighbours, ctx); }, pass);
+      sync(P);
+    }
+    return ran;
+  }
+
   Info info_;
   std::vector<Pass<D>> passes_;
-  mutable unsigned executed_ = 0;
+  std::vector<Pass<D>> afterStep_;
+  mutable unsigned executed_ = 0, executedAfterStep_ = 0;
+  mutable CorrectionCounts counts_;
 };
 
 }  // namespace sph

@@ -2,7 +2,11 @@
 // variant: a model holds an ordered list of them.
 #pragma once
 
+#include "sph/passes/cspm_correction.hpp"
+#include "sph/passes/colour_field.hpp"
 #include "sph/passes/equation_of_state.hpp"
+#include "sph/passes/mls_density.hpp"
+#include "sph/passes/shepard_density.hpp"
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/summation_density.hpp"
 #include "sph/passes/wall_passes.hpp"
@@ -14,6 +18,7 @@ namespace sph {
 
 template <int D>
 using Pass = std::variant<SummationDensityPass<D>, EquationOfStatePass<D>, AdamiWallsPass<D>, SeedForcePass<D>,
-                          WcsphForcePass<D>, RepulsiveWallsPass<D>>;
+                          WcsphForcePass<D>, RepulsiveWallsPass<D>, CspmCorrectionPass<D>, ShepardDensityPass<D>,
+                          MlsDensityPass<D>, ColourFieldPass<D>>;
 
 }  // namespace sph

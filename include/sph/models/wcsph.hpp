@@ -5,11 +5,17 @@
 //   p_i   = EOS(rho_i)                                          (equation_of_state.hpp)
 //   a_i   = - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) grad W     (symmetric_pressure.hpp)
 //           + viscosity (none | laplacian | monaghan | morris)
+//           [+ artificial pressure, Monaghan 2000]             (artificial_pressure.hpp)
 //           + body forces (gravity -g e_up, star -lambda x, damping -nu v)
+//           [+ colour-field surface tension]                  (colour_surface_tension.hpp)
 //   dx_i/dt = v_i [+ XSPH correction]
 // (Monaghan 1992; Monaghan 2005, "Smoothed particle hydrodynamics", Rep. Prog. Phys. 68.)
 //
-// Passes: summation density with the EOS, then the fused force pass. A
+// Passes: summation density with the EOS (or the EOS of the integrated
+// density), the walls' pre-pass, the CSPM correction L_i when it is on,
+// the colour field when surface tension is on, then the fused force pass;
+// after a step, the density re-initialisation (Shepard or MLS) every N
+// steps when it is on. A
 // viscosity set to none or a body force whose coefficient is zero is never
 // constructed, and the arrays it would need (sound speed, XSPH correction)
 // never allocated.
@@ -28,6 +34,9 @@ enum class DensityTreatment { kSummation, kContinuity };
 // particles; the reflecting walls are the scene's constraint), or wall
 // particles: dummy (Adami 2012), dynamic (Crespo 2007), repulsive (Liu 2012).
 enum class WallTreatment { kNoParticles, kDummy, kDynamic, kRepulsive };
+// Density re-initialisation every N steps (continuity density): none,
+// Shepard (zeroth order) or MLS (first order, Colagrossi & Landrieu 2003).
+enum class DensityReinit { kNone, kShepard, kMls };
 
 // Everything a wcsph model is made of, already resolved from names.
 template <int D>
@@ -45,6 +54,15 @@ struct WcsphSpec {
   bool noSlip = true;          // dummy/dynamic walls in the viscous term
   Real spacing = 0;            // fluid spacing dx (repulsive walls)
   bool clampNegative = false;  // negative_pressure = clamp
+  DensityReinit reinit = DensityReinit::kNone;
+  long reinitEvery = 20;       // steps between re-initialisations
+  bool cspm = false;           // CSPM gradient correction in pressure and continuity
+  Real artificialPressure = 0; // Monaghan 2000 epsilon (0: off); needs spacing
+  int artificialPressureN = 4;
+  Real surfaceTension = 0;     // sigma of the colour-field force (0: off)
+  CurvatureMethod curvature = CurvatureMethod::kMorris;
+  bool twoPhase = false;       // colour regions given (else a free surface)
+  Real surfaceThreshold = 0.1; // |n| > threshold / h
   std::optional<SinusoidalWallMotion<D>> wallMotion = std::nullopt;  // a paddle (dummy walls read its a_w)
 };
 
@@ -83,7 +101,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back("xsph");
   }
 
-  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true};
+  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true, false, 0, 4, 0, std::nullopt};
   forces.continuity = continuity;
   if (continuity && s.delta > 0) {
     forces.diffusion.coefficient = 2 * s.delta * h * c0;
@@ -94,6 +112,21 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   forces.wallPairs = s.walls != WallTreatment::kRepulsive;
   forces.wallDensityRates = s.walls == WallTreatment::kDynamic;
   forces.wallViscosity = s.noSlip;
+  forces.cspm = s.cspm;
+
+  if (s.artificialPressure > 0) {
+    forces.artificialPressure = s.artificialPressure;
+    forces.artificialPressureN = s.artificialPressureN;
+    forces.spacing = s.spacing;
+    info.termNames.push_back("artificial_pressure_monaghan2000");
+  }
+  if (s.surfaceTension > 0) {
+    forces.surfaceTension = ColourSurfaceTension<D>{s.surfaceTension, s.surfaceThreshold / h};
+    info.needs |= fieldBit(kFieldColour) | fieldBit(kFieldColourNormal) | fieldBit(kFieldCurvature);
+    info.termNames.push_back("colour_field");
+    info.termNames.push_back(s.curvature == CurvatureMethod::kMuller ? "surface_tension_muller2003"
+                                                                     : "surface_tension_morris2000");
+  }
   if (s.walls == WallTreatment::kDummy || s.walls == WallTreatment::kDynamic) info.needs |= fieldBit(kFieldVWall);
 
   std::vector<Pass<D>> passes;
@@ -110,12 +143,34 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back("dummy_walls_adami2012");
   }
   if (s.walls == WallTreatment::kDynamic) info.termNames.push_back("dynamic_walls_crespo2007");
+  const bool wallsInSums = s.walls != WallTreatment::kRepulsive;
+  if (s.cspm) {
+    passes.push_back(CspmCorrectionPass<D>{s.kernel, wallsInSums});
+    info.needs |= fieldBit(kFieldCspmL);
+    info.termNames.push_back("cspm_gradient_correction");
+  }
+  if (s.surfaceTension > 0) passes.push_back(ColourFieldPass<D>{s.kernel, s.curvature, s.surfaceThreshold / h, s.twoPhase});
   passes.push_back(forces);
   if (s.walls == WallTreatment::kRepulsive) {
     passes.push_back(RepulsiveWallsPass<D>{RepulsiveForce{c0 * c0, s.spacing, h}});
     info.termNames.push_back("repulsive_walls_liu2012");
   }
-  return Model<D>(info, std::move(passes));
+  // The re-initialisations sum over the fluid only: between steps a dummy
+  // wall's density is not its extrapolated one (that exists only inside an
+  // evaluation), dynamic walls' is clamped at rho0 and repulsive walls have
+  // none. Including the stale wall densities pulled the fluid at the bottom
+  // of the hydrostatic tank to rho0 and let it through the floor.
+  std::vector<Pass<D>> afterStep;
+  if (s.reinit == DensityReinit::kShepard)
+    afterStep.push_back(ShepardDensityPass<D>{s.kernel, s.reinitEvery, false, s.eos, s.clampNegative});
+  if (s.reinit == DensityReinit::kMls)
+    afterStep.push_back(MlsDensityPass<D>{s.kernel, s.reinitEvery, false, s.eos, s.clampNegative});
+  if (s.reinit != DensityReinit::kNone) {
+    info.needs |= fieldBit(kFieldRhoReinit);
+    info.termNames.push_back(s.reinit == DensityReinit::kShepard ? "shepard_density_reinit"
+                                                                 : "mls_density_reinit_colagrossi2003");
+  }
+  return Model<D>(info, std::move(passes), std::move(afterStep));
 }
 
 }  // namespace sph

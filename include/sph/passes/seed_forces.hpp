@@ -9,6 +9,7 @@
 #include "sph/pair_loop.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/body_forces.hpp"
+#include "sph/terms/colour_surface_tension.hpp"
 #include "sph/terms/seed_pressure.hpp"
 #include "sph/terms/seed_viscosity.hpp"
 
@@ -17,18 +18,21 @@
 
 namespace sph {
 
-// a_i = rates.a + rates.F / rho_i + body forces; the other rates as the
-// packs write them. The one epilogue of every force pass.
+// a_i = rates.a + rates.F / rho_i + body forces [+ surface tension, from
+// the colour field's pre-pass]; the other rates as the packs write them.
+// The one epilogue of every force pass.
 template <int D, unsigned Writes>
 struct ForceEpilogue {
   const BodyForces<D>& bodies;
   Real xsphEpsilon = 0;
   bool densityRate = false;  // continuity density: write d rho/dt
+  const ColourSurfaceTension<D>* surfaceTension = nullptr;  // none: one branch per particle
 
   void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const {
     Vec<D> a = r.a;
     if constexpr ((Writes & rates::kForceDensity) != 0) a += r.F / P.rho[i];
     bodies.add(i, P, a);
+    if (surfaceTension) a += surfaceTension->acceleration(i, P);
     P.a[i] = a;
     if constexpr ((Writes & rates::kDensityRate) != 0)
       if (densityRate) P.drho[i] = r.drho;

@@ -5,10 +5,21 @@
 
 namespace sph {
 
+// What the kernel corrections did, summed over a scene's evaluations (the
+// run summary prints them): particle-evaluations of the CSPM correction and
+// how many fell back to the uncorrected gradient; density re-initialisations
+// (steps), the particles re-initialised and how many of those MLS left to
+// Shepard.
+struct CorrectionCounts {
+  long cspmParticles = 0, cspmFallbacks = 0;
+  long reinitSteps = 0, reinitParticles = 0, mlsFallbacks = 0;
+};
+
 struct StepContext {
   long step = 0;   // index of the step being computed (0: the initial state)
   Real time = 0;   // simulated time of the state being evaluated [s]
   Real dt = 0;     // the step's dt [s] (0 before the first step)
+  CorrectionCounts* counts = nullptr;  // where passes add their counts (the model's; none: not counted)
 };
 
 }  // namespace sph

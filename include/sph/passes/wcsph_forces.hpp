@@ -1,7 +1,9 @@
 // Pass: the wcsph model's pair terms fused in one pair loop:
 //   d rho_i/dt = continuity + density diffusion        (density = continuity)
-//   a_i        = symmetric pressure + viscosity (none | laplacian | monaghan)
-//                + body forces (epilogue),   XSPH correction (when eps > 0).
+//   a_i        = symmetric pressure [+ Monaghan's artificial pressure]
+//                + viscosity (none | laplacian | monaghan)
+//                + body forces and surface tension (epilogue),
+//   XSPH correction (when eps > 0).
 // Fluid neighbours and wall neighbours (dummy or dynamic wall particles,
 // with their p, rho and the velocity they show the fluid) go through the
 // same terms, less the diffusion and XSPH; dynamic wall particles get their
@@ -12,15 +14,22 @@
 // (continuity, diffusion, XSPH) are switched at run time: off, each is one
 // predictable branch per pair, and the loop is compiled 4 kernels x 4
 // viscosities times (x 2 separations: free space or the minimum image of
-// periodic axes), not 2^3 times more.
+// periodic axes), not 2^3 times more. With the CSPM gradient correction
+// (cspm_correction.hpp; its L_i computed by the pass before this one) the
+// pressure term is CspmPressure and the pair loop corrects the gradient of
+// the pressure and continuity terms: a second instantiation, chosen once
+// per evaluation; off, the loop is the one it was.
 #pragma once
 
 #include "sph/kernels/kernels.hpp"
 #include "sph/pair_loop.hpp"
+#include "sph/passes/cspm_correction.hpp"
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/step_context.hpp"
+#include "sph/terms/artificial_pressure.hpp"
 #include "sph/terms/body_forces.hpp"
 #include "sph/terms/continuity_density.hpp"
+#include "sph/terms/cspm_pressure.hpp"
 #include "sph/terms/density_diffusion.hpp"
 #include "sph/terms/laplacian_viscosity.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
@@ -28,6 +37,7 @@
 #include "sph/terms/symmetric_pressure.hpp"
 #include "sph/terms/xsph.hpp"
 
+#include <optional>
 #include <tuple>
 #include <variant>
 
@@ -74,26 +84,38 @@ struct WcsphForcePass {
   bool wallPairs = true;              // walls enter the SPH sums (not for repulsive walls)
   bool wallDensityRates = false;      // dynamic walls: d rho/dt of the wall particles
   bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
+  bool cspm = false;                  // CSPM-corrected pressure and continuity (needs cspmL)
+  Real artificialPressure = 0;        // Monaghan 2000 epsilon (0: off)
+  int artificialPressureN = 4;        // its exponent n
+  Real spacing = 0;                   // dx of f_ij = W(r)/W(dx)
+  std::optional<ColourSurfaceTension<D>> surfaceTension;  // from the colour pre-pass
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
     const unsigned bits = std::visit(
         [&](const auto& k, const auto& visc) {
           using K = std::decay_t<decltype(k)>;
-          const ContinuityDensity rate{continuity};
-          const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, SymmetricPressure{}),
-                                                 viscosityPack<K, false>(k, visc),
-                                                 std::make_tuple(Xsph<K>{k, xsphEpsilon}));
-          const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, SymmetricPressure{}),
-                                                         viscosityPack<K, true>(k, visc, wallViscosity));
-          constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
-          return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
-                             std::make_tuple(ContinuityDensity{wallDensityRates}),
-                             ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity}, WallEpilogue<D>{},
-                             PairLoopParts{wallPairs, wallDensityRates});
+          auto loop = [&](const auto& pressure, const auto& correct) {
+            const ContinuityDensity rate{continuity};
+            const MonaghanArtificialPressure<K> tension{k, artificialPressure, artificialPressureN,
+                                                        artificialPressure > 0 ? 1 / k.W(spacing) : 0};
+            const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, pressure, tension),
+                                                   viscosityPack<K, false>(k, visc),
+                                                   std::make_tuple(Xsph<K>{k, xsphEpsilon}));
+            const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, pressure),
+                                                           viscosityPack<K, true>(k, visc, wallViscosity));
+            constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
+            return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
+                               std::make_tuple(ContinuityDensity{wallDensityRates}),
+                               ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity,
+                                                        surfaceTension ? &*surfaceTension : nullptr},
+                               WallEpilogue<D>{}, PairLoopParts{wallPairs, wallDensityRates}, correct);
+          };
+          if (cspm) return loop(CspmPressure{}, CspmCorrection<D>{P.cspmL.data()});
+          return loop(SymmetricPressure{}, NoGradientCorrection{});
         },
         kernel, viscosity);
     const unsigned walls = wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
-    return bits | walls | bodies.bits();
+    return bits | walls | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
   }
 };
 

@@ -24,6 +24,13 @@ enum : unsigned {
   kDynamicWalls = 1u << 14,
   kRepulsiveWalls = 1u << 15,
   kMorrisViscosity = 1u << 16,
+  kShepardDensity = 1u << 17,  // density re-initialisation, zeroth order
+  kMlsDensity = 1u << 18,      // density re-initialisation, first order (MLS)
+  kCspmCorrection = 1u << 19,  // the L_i pre-pass
+  kCspmPressure = 1u << 20,    // the pressure gradient with L_i
+  kArtificialPressure = 1u << 21,
+  kColourField = 1u << 22,
+  kSurfaceTension = 1u << 23,
 };
 
 }  // namespace sph::term_bits

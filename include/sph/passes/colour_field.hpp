@@ -1,0 +1,33 @@
+// Pass: the colour field's normal n = grad c and the curvature kappa of every
+// fluid particle (terms/colour_surface_tension.hpp has the equations and
+// sources), after the density and before the force pass, which turns them
+// into the surface-tension force. Present only when surface_tension is on.
+#pragma once
+
+#include "sph/kernels/kernels.hpp"
+#include "sph/passes/step_context.hpp"
+#include "sph/terms/colour_surface_tension.hpp"
+
+#include <variant>
+
+namespace sph {
+
+template <int D>
+struct ColourFieldPass {
+  Kernel<D> kernel;
+  CurvatureMethod method = CurvatureMethod::kMorris;
+  Real minNormal = 0;  // |n| > minNormal: a reliable normal
+  bool twoPhase = false;  // a colour region was given: difference forms
+
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+    std::visit(
+        [&](const auto& k) {
+          neighbours.withSeparation(
+              [&](const auto& sep) { computeColourField(P, neighbours, k, method, minNormal, twoPhase, sep); });
+        },
+        kernel);
+    return term_bits::kColourField;
+  }
+};
+
+}  // namespace sph
