@@ -17,15 +17,15 @@ import argparse
 import os
 import re
 import statistics
-import subprocess
+import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True  # keep the source tree clean
+sys.path.insert(0, HERE)
+from water_vs_yardstick import run  # noqa: E402
+from water_vs_yardstick import yardstick as yardstick_run  # noqa: E402
 CASES = os.path.join(HERE, "..", "cases")
-
-
-def run(cmd, env=None):
-    return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env).stdout
 
 
 def sph_run(exe, case, flags, threads, steps, dt, work):
@@ -37,13 +37,6 @@ def sph_run(exe, case, flags, threads, steps, dt, work):
     if not (m and nb and n):
         raise SystemExit("sph run failed:\n" + out)
     return int(n.group(1)), float(nb.group(1)), float(m.group(1))
-
-
-def yardstick(exe, n, threads, steps):
-    nx = max(2, round((n / 2) ** 0.5))
-    out = run([exe, str(nx), str(steps), "1.5"], dict(os.environ, OMP_NUM_THREADS=str(threads)))
-    m = re.search(r"particle-steps/s=([\d.e+]+)", out)
-    return float(m.group(1))
 
 
 def main():
@@ -78,7 +71,7 @@ def main():
                     n, nb, ps = sph_run(exe, case, flags, threads, a.steps, dt, os.path.join(work, "run"))
                     samples[name].append(ps)
                     info[name] = (n, nb)
-                    ysamples[name].append(yardstick(ys, n, threads, max(20, a.steps // 4)))
+                    ysamples[name].append(yardstick_run(ys, n, threads, max(20, a.steps // 4), hdx=1.5)[2])
             for name, *_ in scenarios:
                 n, nb = info[name]
                 ps, y = statistics.median(samples[name]), statistics.median(ysamples[name])

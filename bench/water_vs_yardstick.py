@@ -25,9 +25,9 @@ def run(cmd, env=None):
     return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env).stdout
 
 
-def yardstick(exe, n, threads, steps):
+def yardstick(exe, n, threads, steps, hdx=1.3):
     nx = max(2, round((n / 2) ** 0.5))
-    out = run([exe, str(nx), str(steps), "1.3"], dict(os.environ, OMP_NUM_THREADS=str(threads)))
+    out = run([exe, str(nx), str(steps), str(hdx)], dict(os.environ, OMP_NUM_THREADS=str(threads)))
     m = re.search(r"N=(\d+) threads=\d+ neighbours=([\d.]+) particle-steps/s=([\d.e+]+)", out)
     return int(m.group(1)), float(m.group(2)), float(m.group(3))
 

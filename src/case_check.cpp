@@ -133,8 +133,7 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
 
   // Walls and kernels.
   if (c.walls && (c.boundary == "dummy" || c.boundary == "dynamic")) {
-    const long needed = wallLayersNeeded(c);
-    const long layers = c.wallLayers > 0 ? c.wallLayers : needed;
+    const int needed = wallLayersNeeded(c), layers = wallLayersUsed(c);
     out << "  wall layers      " << layers << " (the support needs " << needed << ")\n";
     if (layers < needed) warn("fewer wall layers than the support needs: particles near a wall see a gap and leak");
   }

@@ -304,7 +304,7 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   }
   // Wall particles, after the fluid.
   if (wcsph && c.walls && c.boundary != "reflecting") {
-    const int layers = c.wallLayers > 0 ? static_cast<int>(c.wallLayers) : wallLayersNeeded(c);
+    const int layers = wallLayersUsed(c);
     const Real mWall = c.rho0 * std::pow(c.spacing, D);
     // A sliding lid: the wall particles above the box carry its velocity
     // u_w, which the wall terms see (dummy_adami2012.hpp); none moves.

@@ -106,6 +106,10 @@ std::vector<Vec<D>> wallParticlePositions(const CaseConfig& c, int layers) {
   return out;
 }
 
+int wallLayersUsed(const CaseConfig& c) {
+  return c.wallLayers > 0 ? static_cast<int>(c.wallLayers) : wallLayersNeeded(c);
+}
+
 template <int D>
 std::pair<std::size_t, std::size_t> obstacleParticleRange(const CaseConfig& c, int layers, std::size_t k) {
   CaseConfig upTo = c;

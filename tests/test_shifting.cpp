@@ -59,6 +59,20 @@ Real kernelSumSpread(const Scene<2>& s, Real h) {
   return std::sqrt(var / static_cast<Real>(sums.size())) / mean;
 }
 
+// The scene of c with its particles jittered by up to `fraction` of a
+// spacing (seeded); a periodic box wraps them as the scene sorts them.
+Scene<2> jitteredScene(const CaseConfig& c, Real fraction, unsigned seed) {
+  validateCase(c);
+  const CaseConfig cd = withDefaults(c);
+  InitialState<2> init = buildInitialState<2>(cd);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<Real> u(-fraction * c.spacing, fraction * c.spacing);
+  for (auto& x : init.particles.x) x += Vec<2>(u(rng), u(rng));
+  Scene<2> s = makeScene<2>(cd, std::move(init));
+  BOOST_REQUIRE(!s.initialise(false));
+  return s;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(shifting)
@@ -92,16 +106,7 @@ BOOST_AUTO_TEST_CASE(a_disordered_lattice_becomes_more_even) {
   auto spreadAfter = [](bool shift, Real& before) {
     CaseConfig c = periodicLattice();
     if (!shift) c.shifting = "none";
-    validateCase(c);
-    const CaseConfig cd = withDefaults(c);
-    InitialState<2> init = buildInitialState<2>(cd);
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<Real> u(-0.15 * c.spacing, 0.15 * c.spacing);
-    for (auto& x : init.particles.x) x += Vec<2>(u(rng), u(rng));
-    for (auto& x : init.particles.x)
-      for (int d = 0; d < 2; ++d) x[d] = std::fmod(x[d] + 1, 1.0);
-    Scene<2> s = makeScene<2>(cd, std::move(init));
-    BOOST_REQUIRE(!s.initialise(false));
+    Scene<2> s = jitteredScene(c, 0.15, 7);
     before = kernelSumSpread(s, c.h);
     for (int k = 0; k < 200; ++k) BOOST_REQUIRE(!s.step());
     return kernelSumSpread(s, c.h);
@@ -124,17 +129,9 @@ BOOST_AUTO_TEST_CASE(the_free_surface_is_not_shifted) {
   c.domainMax = {2, 2};
   c.blockMin = {0, 0};
   c.blockMax = {0.5, 0.5};
-  c.density = "continuity";
-  validateCase(c);
-  const CaseConfig cd = withDefaults(c);
-  InitialState<2> init = buildInitialState<2>(cd);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<Real> u(-0.1 * c.spacing, 0.1 * c.spacing);
-  for (auto& x : init.particles.x) x += Vec<2>(u(rng), u(rng));
-  Scene<2> s = makeScene<2>(cd, std::move(init));
-  BOOST_REQUIRE(!s.initialise(false));
+  Scene<2> s = jitteredScene(c, 0.1, 3);
   auto P = s.particles();  // copy: positions and the neighbour list at x^n
-  ParticleShifting<2> shift(makeKernel<2>(cd), 4, c.spacing, c.rho0);
+  ParticleShifting<2> shift(makeKernel<2>(withDefaults(c)), 4, c.spacing, c.rho0);
   shift.apply(P, s.neighbours(), 1e-3);
   std::size_t edge = 0, interior = 0, movedInterior = 0;
   for (std::size_t i = 0; i < P.fluidCount(); ++i) {

@@ -192,6 +192,14 @@ def dam_break_errors(run, T_range=(1.0, 3.0)):
 
 # ---- Channel flows (Morris, Fox & Zhu 1997): Poiseuille and Couette ----
 
+def channel_scale(c, flow):
+    """The velocity scale of a channel case: u_max = F L^2 / (8 nu) with
+    F = gravity[0] (Poiseuille), or the plate speed V0 = lid_velocity[0]
+    (Couette); L the channel width along the last axis."""
+    L = c["domain_max"][-1] - c["domain_min"][-1]
+    return c["gravity"][0] * L * L / (8 * c["nu"]) if flow == "poiseuille" else c["lid_velocity"][0]
+
+
 def channel_profile_errors(run, flow):
     """The velocity profile u(y) against the series solution of Morris et al.
     (1997) at each time of the reference table (the snapshot at that time;
@@ -203,12 +211,8 @@ def channel_profile_errors(run, flow):
     c = run.case
     L = c["domain_max"][-1] - c["domain_min"][-1]
     y0 = c["domain_min"][-1]
-    if flow == "poiseuille":
-        scale = c["gravity"][0] * L * L / (8 * c["nu"])
-        table = reference_table("poiseuille_morris1997_series.csv")
-    else:
-        scale = c["lid_velocity"][0]
-        table = reference_table("couette_morris1997_series.csv")
+    scale = channel_scale(c, flow)
+    table = reference_table(f"{flow}_morris1997_series.csv")
     times = [0.0225, 0.045, 0.1125, 0.225, 0.45, 1.0]
     entries = run.entries
     out = []
@@ -242,9 +246,7 @@ def midline_history_errors(run, flow):
     series): the worst |u - u_ref| / scale over the reference times the probe
     file covers (linear interpolation between samples)."""
     import csv
-    c = run.case
-    L = c["domain_max"][-1] - c["domain_min"][-1]
-    scale = c["gravity"][0] * L * L / (8 * c["nu"]) if flow == "poiseuille" else c["lid_velocity"][0]
+    scale = channel_scale(run.case, flow)
     with open(os.path.join(run.folder, "probes.csv")) as f:
         rows = list(csv.reader(f))
     head = rows[0]

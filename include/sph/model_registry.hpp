@@ -46,8 +46,7 @@ inline Real starLambda(const CaseConfig& c) {
 template <int D>
 std::optional<SinusoidalWallMotion<D>> makeWallMotion(const CaseConfig& c, std::size_t nFluid) {
   if (c.paddle <= 0 || !c.walls || c.boundary == "reflecting") return std::nullopt;
-  const int layers = c.wallLayers > 0 ? static_cast<int>(c.wallLayers) : wallLayersNeeded(c);
-  const auto range = obstacleParticleRange<D>(c, layers, static_cast<std::size_t>(c.paddle - 1));
+  const auto range = obstacleParticleRange<D>(c, wallLayersUsed(c), static_cast<std::size_t>(c.paddle - 1));
   SinusoidalWallMotion<D> m;
   m.firstId = static_cast<std::int64_t>(nFluid + range.first);
   m.endId = static_cast<std::int64_t>(nFluid + range.second);

@@ -20,6 +20,8 @@ namespace sph {
 
 // Layers of dummy or dynamic wall particles the case's kernel support needs.
 int wallLayersNeeded(const CaseConfig& c);
+// The layers a case builds: wall_layers when given, else the ones needed.
+int wallLayersUsed(const CaseConfig& c);
 
 template <int D>
 std::vector<Vec<D>> wallParticlePositions(const CaseConfig& c, int layers);
