@@ -53,16 +53,23 @@ struct SeedForcePass {
   std::optional<SeedViscosity> viscosity;
   BodyForces<D> bodies;
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    auto loop = [&](const auto& pack) {
-      using Pack = std::decay_t<decltype(pack)>;
-      constexpr unsigned writes = PackTraits<Pack>::writes;
-      return runPairLoop(P, neighbours, NoPairKernel{}, pressure.kernels.support(), pack, pack, std::tuple<>(),
-                         ForceEpilogue<D, writes>{bodies}, WallEpilogue<D>{});
-    };
-    const unsigned bits = viscosity ? loop(std::make_tuple(pressure, *viscosity)) : loop(std::make_tuple(pressure));
-    return bits | bodies.bits();
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned SeedForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+  auto loop = [&](const auto& pack) {
+    using Pack = std::decay_t<decltype(pack)>;
+    constexpr unsigned writes = PackTraits<Pack>::writes;
+    return runPairLoop(P, neighbours, NoPairKernel{}, pressure.kernels.support(), pack, pack, std::tuple<>(),
+                       ForceEpilogue<D, writes>{bodies}, WallEpilogue<D>{});
+  };
+  const unsigned bits = viscosity ? loop(std::make_tuple(pressure, *viscosity)) : loop(std::make_tuple(pressure));
+  return bits | bodies.bits();
+}
+
+extern template struct SeedForcePass<2>;
+extern template struct SeedForcePass<3>;
 
 }  // namespace sph
