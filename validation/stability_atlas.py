@@ -253,7 +253,7 @@ def paired_fraction(a, kernel, hdx):
     steps = int(a.pairing_time * h / c / dt)
     rng = np.random.default_rng(2)
     jitter = rng.uniform(-0.02, 0.02, (n, n, 2)) * dx
-    case = lattice_case(a, "pairing", n, dx, h, c, dt, steps, steps,
+    case = lattice_case(a, "pairing_lattice", n, dx, h, c, dt, steps, steps,
                         lambda i, j: ((i + 0.5) * dx + jitter[j, i, 0], (j + 0.5) * dx + jitter[j, i, 1], 0, 0),
                         kernel, "summation", "leap_frog", PAIRING_EXTRA.format(pb=a.pairing_pressure * 1000.0 * c * c))
     rc, out = run_sph(a, case)
@@ -273,20 +273,19 @@ def paired_fraction(a, kernel, hdx):
 
 def mode_pairing(a):
     """The paired fraction (a neighbour closer than 0.6 dx) after
-    --pairing-time h/c, over h/dx; the onset is the smallest h/dx from which
-    more than 10% of the particles are paired."""
+    --pairing-time h/c, over h/dx; a kernel pairs at the h/dx where more
+    than 10% of the particles are paired."""
     for kernel in a.kernels:
-        onset = None
+        paired = []
         for hdx in a.hdx_list:
             frac, why = paired_fraction(a, kernel, hdx)
             print(f"{kernel} h/dx {hdx}: paired {100 * frac:.0f}% ({why})", flush=True)
             append(os.path.join(a.workdir, "pairing.csv"), "kernel,h_over_dx,paired_fraction",
                    f"{kernel},{hdx},{frac:.4f}")
-            if frac > 0.10 and onset is None:
-                onset = hdx
-            if frac <= 0.10:
-                onset = None
-        print(f"{kernel}: pairs from h/dx {onset}" if onset else f"{kernel}: no pairing up to h/dx {a.hdx_list[-1]}")
+            if frac > 0.10:
+                paired.append(hdx)
+        print(f"{kernel}: pairs at h/dx {', '.join(str(h) for h in paired)}" if paired
+              else f"{kernel}: no pairing at h/dx {a.hdx_list[0]} ... {a.hdx_list[-1]}")
 
 
 def leak_trial(a, boundary, layers, C):
@@ -297,12 +296,9 @@ def leak_trial(a, boundary, layers, C):
     out = os.path.join(a.workdir, "run")
     cmd = [a.sph, "run", os.path.join(HERE, "..", "cases", "dam_break.case"), "--output", out, "--overwrite",
            "--no-progress", "--threads", "1", "--spacing", repr(a.leak_dx), "--h", repr(h), "--dt", repr(dt),
-           "--end_time", repr(a.leak_time), "--output_interval", repr(a.leak_time), "--boundary", boundary,
-           "--probe_points", "[]", "--height_probes", "[]", "--front_probe", "false"]
+           "--end_time", repr(a.leak_time), "--output_interval", repr(a.leak_time), "--boundary", boundary]
     if boundary != "repulsive":
-        cmd += ["--wall_layers", str(layers), "--wall_layers_override", "true"]
-    if boundary == "dynamic":
-        cmd += ["--negative_pressure", "allow"]
+        cmd += ["--wall_layers", str(layers), "--wall_layers_override"]
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if r.returncode == 0:
         return True, "kept its fluid"
@@ -351,7 +347,7 @@ def main():
     ap.add_argument("--leak-dx", type=float, default=0.02)
     ap.add_argument("--leak-time", type=float, default=0.6)
     ap.add_argument("--leak-lo", type=float, default=0.05)
-    ap.add_argument("--leak-hi", type=float, default=2.0)
+    ap.add_argument("--leak-hi", type=float, default=4.0)
     ap.add_argument("--check", action="store_true")
     a = ap.parse_args()
     os.makedirs(a.workdir, exist_ok=True)
