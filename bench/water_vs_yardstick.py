@@ -8,8 +8,8 @@ thread count, one repeat of each in turn, medians over the repeats.
   bench/water_vs_yardstick.py [--build build] [--n 10000,100000] [--threads 1,2]
                               [--repeats 5] [--steps 60] [--old-bench PATH]
 
---old-bench: an sph-bench of an earlier build, run interleaved too (its seed
-suite), for before/after figures. Prints particle-steps per second (p-s/s)
+--old-bench: an sph-bench of an earlier build, run interleaved too (its water
+and seed suites), for before/after figures. Prints particle-steps per second (p-s/s)
 and the ratio sph / yardstick (1.0: as fast as the yardstick; the issue's
 aim is >= 1/1.5 = 0.67 for the full physics). Figures are printed, never
 asserted. `uptime` before and after tells how busy the machine was.
@@ -64,7 +64,8 @@ def main():
                 N, nb, ps = yardstick(ys, n, t, a.steps)
                 samples.setdefault("yardstick", []).append((N, nb, ps, 0))
                 for suite, exe, tag in [("water", sb, ""), ("seed", sb, "")] + (
-                        [("seed", a.old_bench, " (old build)")] if a.old_bench else []):
+                        [("water", a.old_bench, " (old build)"), ("seed", a.old_bench, " (old build)")]
+                        if a.old_bench else []):
                     for label, row in bench(exe, suite, n, t, a.steps).items():
                         if suite == "seed" and "1.35" not in label:
                             continue

@@ -2,9 +2,10 @@
 //
 // The stable ranges it warns about were measured with sph (README, "Where
 // the seed scheme works" and the stability notes of issue 9):
-//   acoustic   leap-frog with continuity density is unstable from c0 dt / h
-//              = 1.87 (cubic spline) and 1.81 (Wendland C2) at h/dx 1.3
-//              (tests/reference/acoustic_cfl_limits.csv); the usual aim is
+//   acoustic   leap-frog and symplectic Euler are unstable from c0 dt / h
+//              = 1.88 (cubic spline) and 1.81 (Wendland C2) at h/dx 1.3,
+//              rk4 from 2.67 and 2.56 (validation/stability_atlas.py, against
+//              tests/reference/acoustic_cfl_limits.csv); the usual aim is
 //              c0 dt / h <= 0.25, and past half the limit waves grow;
 //   pairing    the cubic spline pairs particles from h/dx 1.3 (39% of them
 //              at 1.3, 52-70% from 1.5); Wendland C2 stays clean to 2.0;
@@ -110,10 +111,11 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       << "\n";
   if (c0 > 0) {
     const Real courant = c0 * dt / h;
-    const bool continuity = c.density == "continuity";
-    const Real limit = c.kernel == "wendland_c2" ? (continuity ? 1.81 : 2.33) : (continuity ? 1.87 : 2.46);
-    out << "    acoustic       c0 dt / h = " << fmt(courant) << " (aim <= 0.25; leap-frog measured unstable from ~"
-        << fmt(limit) << ")\n";
+    // The stability atlas's measured limits at h/dx 1.3 (README, "Stability atlas").
+    const bool rk4 = c.integrator == "rk4", wendland = c.kernel == "wendland_c2";
+    const Real limit = rk4 ? (wendland ? 2.56 : 2.67) : (wendland ? 1.81 : 1.88);
+    out << "    acoustic       c0 dt / h = " << fmt(courant) << " (aim <= 0.25; " << (rk4 ? "rk4" : "leap-frog")
+        << " measured unstable from ~" << fmt(limit) << ")\n";
     if (c.cfl == 0 && courant > 0.5 * limit)
       warn("c0 dt / h = " + fmt(courant) + " is past half the measured acoustic limit " + fmt(limit) +
            ": lower dt to " + fmt(0.25 * h / c0) + " s");

@@ -421,9 +421,13 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   if (c.model == "seed_wcsph") soundSpeed = std::sqrt(c.k);
   else if (c.eos != "polytropic")
     soundSpeed = std::visit([&](const auto& e) { return e.soundSpeed(c.rho0); }, makeEos(c));
+  // ... and, for the Tait EOS of the water cases, its rest density for the
+  // density window (a linear EOS and the seed's set a stiffness k and are
+  // compressible by design: the seed dam break reaches 1.2 rho0).
+  const Real densityRef = c.model != "seed_wcsph" && c.eos == "tait" ? c.rho0 : 0;
   RegimeCheck regime(soundSpeed, c.spacing, scene.particles().fluidCount());
   const bool regimeOn = c.regimeCheck != "off";
-  if (regimeOn) regime.start(measureRegime(scene.particles(), scene.neighbours(), soundSpeed, c.spacing));
+  if (regimeOn) regime.start(measureRegime(scene.particles(), scene.neighbours(), soundSpeed, c.spacing, densityRef));
 
   const bool terminal = isatty(STDERR_FILENO);
   const bool showLiveLine = c.progress && terminal;
@@ -487,7 +491,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       }
       // Still physics? Every 10 steps (regime_check.hpp).
       if (regimeOn && scene.stepIndex() % 10 == 0) {
-        const auto verdict = regime.judge(measureRegime(scene.particles(), scene.neighbours(), soundSpeed, c.spacing),
+        const auto verdict = regime.judge(measureRegime(scene.particles(), scene.neighbours(), soundSpeed, c.spacing, densityRef),
                                           scene.lastTimeStep().dt, c.h);
         if (!verdict.warning.empty()) {
           if (showLiveLine) err << "\n";

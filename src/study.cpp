@@ -167,7 +167,7 @@ std::string actionText(RunAction a) {
 }  // namespace
 
 const std::vector<std::string>& studyObservables() {
-  static const std::vector<std::string> o = {"dam_break", "hydrostatic"};
+  static const std::vector<std::string> o = {"dam_break", "hydrostatic", "toy_star"};
   return o;
 }
 

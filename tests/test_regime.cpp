@@ -2,7 +2,8 @@
 // particle alone, the neighbour count, a pair brought together is seen),
 // and runs that leave the regime without a NaN, each stopped with its cause
 // named, exit 3, the cause in run.json and the snapshots before it intact:
-// explicit Euler past its acoustic limit (Mach), a block dropped with a time
+// explicit Euler past its acoustic limit (Mach), a column whose sound speed
+// is too low (compressed past the density window), a block dropped with a time
 // step 20x the seed's (the fluid scatters into spray); `regime_check =
 // warn` lets the same run finish with a warning.
 #include "test_support.hpp"
@@ -50,6 +51,26 @@ BOOST_AUTO_TEST_CASE(measures_on_a_lattice) {
   RegimeCheck check(10.0, 0.01, P.fluidCount());
   check.start(RegimeState{0, 0, 0, 12, 0});
   BOOST_TEST(check.judge(s, 1e-3, 0.013).stop.find("Mach 2.5") == 0u);
+  // One particle 20% denser than rho0 (no particle faster than sound): compressed.
+  P.v[0] = Vec<2>::Zero();
+  P.rho[2] = 1.2 * c.rho0;
+  s = measureRegime(P, scene.neighbours(), 10.0, 0.01, c.rho0);
+  BOOST_TEST(s.densityMax == 1.2, tt::tolerance(1e-12));
+  BOOST_TEST(check.judge(s, 1e-3, 0.013).stop.find("compressed: a fluid particle's density is 1.2 rho0") == 0u);
+  P.rho[2] = 1.09 * c.rho0;  // inside the window
+  BOOST_TEST(check.judge(measureRegime(P, scene.neighbours(), 10.0, 0.01, c.rho0), 1e-3, 0.013).stop.empty());
+}
+
+// A sound speed far too low for the column (Tait, c0 = 5 m/s: B = rho0 c0^2
+// / 7 = 3.6 kPa against rho0 g 2a = 4.9 kPa at the floor, so the bottom of
+// the column is at (1 + 4.9/3.6)^(1/7) = 1.13 rho0 from the start).
+BOOST_AUTO_TEST_CASE(a_column_compressed_past_the_density_window_is_stopped) {
+  const auto dir = test::scratchDir("regime_compressed");
+  const auto r = test::runSph({"run", test::caseFile("dam_break_mm"), "--output", dir.string(), "--c0", "5",
+                               "--spacing", "0.02", "--h", "0.03", "--dt", "1e-3", "--threads", "1"});
+  BOOST_TEST(r.exitCode == 3, r.output);
+  BOOST_TEST(r.output.find("compressed: a fluid particle's density is 1.1") != std::string::npos, r.output);
+  BOOST_TEST(runJson(dir)["message"].get<std::string>().find("compressed") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(explicit_euler_past_its_limit_is_stopped_as_mach) {

@@ -88,14 +88,18 @@ BOOST_AUTO_TEST_CASE(star_generator_places_mass_inside_radius) {
   BOOST_TEST((mean - Vec<3>(1, 2, 3)).norm() < 0.03);
 }
 
-// The gate. Tolerance 3% (the issue's); measured 1.0% in 2D (h = 0.1) and
-// 1.8% in 3D (h = 0.12) with 800 particles.
+// The gate: the shipped cases within 1% (issue 9: the setting the toy-star
+// studies recommend); measured 0.57% in 2D (1600 particles, h = 0.05) and
+// 0.80% in 3D (8000, h = 0.06). The error is the SPH density's own
+// smoothing bias, O(h^2), plus the noise of a random start, so the gate
+// fails if either case's h or N is made coarser (2D at h = 0.1: 1.0%; 3D
+// with 4000 particles at h = 0.075: 1.15%).
 BOOST_AUTO_TEST_CASE(relaxed_2d_star_matches_analytic_profile) {
-  BOOST_TEST(relaxedStarError("toy_star_2d", {"--star_particles", "800"}) < 0.03);
+  BOOST_TEST(relaxedStarError("toy_star_2d", {}) < 0.01);
 }
 
 BOOST_AUTO_TEST_CASE(relaxed_3d_star_matches_analytic_profile) {
-  BOOST_TEST(relaxedStarError("toy_star_3d", {"--star_particles", "800"}) < 0.03);
+  BOOST_TEST(relaxedStarError("toy_star_3d", {}) < 0.01);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

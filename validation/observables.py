@@ -7,6 +7,7 @@ vtkmodules) and numpy.
 """
 import glob
 import json
+import math
 import os
 import xml.etree.ElementTree as ET
 
@@ -134,6 +135,46 @@ def hydrostatic_errors(run, depth0):
         "rho_min": float(s["density"][s.fluid].min()),
         "rho_max": float(s["density"][s.fluid].max()),
         "v_max": float(np.abs(s["velocity"][s.fluid]).max()),
+    }
+
+
+# ---- Toy star (Monaghan & Price 2004) ----
+
+def toy_star_lambda(dim, M, R, k, n):
+    """lambda of the polytrope of mass M and radius R (include/sph/toy_star.hpp
+    gives its derivation): 2 k (1+n) pi^(-D/2n) [M Gamma(n+1+D/2) /
+    (R^D Gamma(1+n))]^(1/n) / R^2."""
+    return (2 * k * (1 + n) * math.pi ** (-dim / (2 * n))
+            * (M * math.gamma(n + 1 + dim / 2) / (R ** dim * math.gamma(1 + n))) ** (1 / n) / R ** 2)
+
+
+def toy_star_errors(run, inside=0.9):
+    """The last snapshot's density against the analytic polytrope
+    rho(r) = [lambda / (2 k (1+n)) (R^2 - r^2)]^n about the centre of mass:
+    relative L2 over the particles inside `inside` R (the measure sph prints,
+    but per particle, not per radial bin), and the mean and worst relative
+    error inside 0.5 R (the core, away from the thinning edge)."""
+    c = run.case
+    s = run.last()
+    dim, k, n = c["dimension"], c["k"], c["polytropic_index"]
+    R = c["star_radius"]
+    M = c["star_mass"]
+    lam = toy_star_lambda(dim, M, R, k, n)
+    x = s.x[:, :dim]
+    m = s["mass"]
+    centre = (m[:, None] * x).sum(axis=0) / m.sum()
+    r = np.linalg.norm(x - centre, axis=1)
+    rho = s["density"]
+    exact = np.where(r < R, np.maximum(lam / (2 * k * (1 + n)) * (R * R - r * r), 0) ** n, 0)
+    sel = r < inside * R
+    core = r < 0.5 * R
+    rel = np.abs(rho[core] / exact[core] - 1)
+    return {
+        "time": s.time,
+        "l2_error": float(np.sqrt(((rho[sel] - exact[sel]) ** 2).sum() / (exact[sel] ** 2).sum())),
+        "core_mean_error": float(rel.mean()),
+        "core_max_error": float(rel.max()),
+        "particles": int(len(r)),
     }
 
 

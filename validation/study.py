@@ -34,6 +34,9 @@ Error metrics (each observable's first one is charted and recommended on):
   hydrostatic  mean_error: mean |p - p_exact| / (rho0 g H) over the fluid at
                the last snapshot, p_exact the compressible column; also the
                worst layer deeper than a support below the surface
+  toy_star     l2_error: relative L2 of the density of the particles inside
+               0.9 R against the analytic polytrope, at the last snapshot;
+               also the mean and worst relative error inside 0.5 R
 
 Matplotlib with the Agg backend (no display), Debian's /usr/bin/python3.
 """
@@ -61,12 +64,18 @@ def hydrostatic(run):
     return observables.hydrostatic_errors(run, c["block_max"][-1] - c["block_min"][-1])
 
 
+def toy_star(run):
+    return observables.toy_star_errors(run)
+
+
 # observable -> (measure, charted metric, what the metric is)
 OBSERVABLES = {
     "dam_break": (dam_break, "front_mean_abs_error",
                   "mean |Z - Z_MM| / Z_MM of the surge front against Martin & Moyce (1952), 1 <= T <= 3"),
     "hydrostatic": (hydrostatic, "mean_error",
                     "mean |p - p_exact| / (rho0 g H) over the fluid at the last snapshot (compressible column)"),
+    "toy_star": (toy_star, "l2_error",
+                 "relative L2 density error inside 0.9 R against the analytic polytrope (Monaghan & Price 2004)"),
 }
 
 COSTS = ["wall_s", "cpu_s", "steps", "particle_steps_per_s", "mean_neighbours", "peak_memory_mb", "threads"]

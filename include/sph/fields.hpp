@@ -34,7 +34,6 @@ enum FieldId : unsigned {
   kFieldId,        // stable identity
   kFieldKind,      // 0 fluid, 1 wall (walls are contiguous, after the fluid)
   kFieldVHalf,     // leap-frog half-step velocity
-  kFieldRhoHalf,   // leap-frog half-step density (continuity density)
   kFieldC,         // sound speed
   kFieldVXsph,     // XSPH velocity correction, added to the drift
   kFieldVWall,     // velocity a wall particle shows the fluid (no-slip extrapolation)
@@ -79,7 +78,6 @@ inline constexpr FieldInfo kFieldTable[kFieldCount] = {
     {kFieldId, "id", FieldRole::kState, "id"},
     {kFieldKind, "kind", FieldRole::kState, "kind"},
     {kFieldVHalf, "vHalf", FieldRole::kStage, nullptr},
-    {kFieldRhoHalf, "rhoHalf", FieldRole::kStage, nullptr},
     {kFieldC, "c", FieldRole::kDerived, nullptr},
     {kFieldVXsph, "vXsph", FieldRole::kDerived, "xsph_velocity"},
     {kFieldVWall, "vWall", FieldRole::kDerived, nullptr},

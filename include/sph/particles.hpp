@@ -33,7 +33,6 @@ struct FieldArrays {
   std::vector<std::int64_t> id;
   std::vector<std::uint8_t> kind;
   std::vector<Vec<D>> vHalf;
-  std::vector<Real> rhoHalf;
   std::vector<Real> c;
   std::vector<Vec<D>> vXsph, vWall;
   std::vector<Vec<D>> x0, v0;
@@ -60,7 +59,6 @@ struct FieldArrays {
     f(kFieldTable[kFieldId], s.id...);
     f(kFieldTable[kFieldKind], s.kind...);
     f(kFieldTable[kFieldVHalf], s.vHalf...);
-    f(kFieldTable[kFieldRhoHalf], s.rhoHalf...);
     f(kFieldTable[kFieldC], s.c...);
     f(kFieldTable[kFieldVXsph], s.vXsph...);
     f(kFieldTable[kFieldVWall], s.vWall...);

@@ -94,6 +94,7 @@ class Scene {
     for (std::size_t k = 0; k < order.size(); ++k)
       if (order[k] != k)
         throw std::runtime_error("the snapshot is not in the order sph keeps its particles (written by another program?)");
+    model_.resumed(P_, neighbours_);
     return finishStep([](std::size_t) {});
   }
 
@@ -111,7 +112,9 @@ class Scene {
     if (wallMotion_) wallMotion_->advance(P_, time_, time_ + choice.dt);
     std::visit(
         [&](const auto& integrator) {
-          integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain);
+          context_.densityRateApart = std::decay_t<decltype(integrator)>::kDensityRateApart;
+          integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain,
+                             [&] { model_.densityRate(P_, neighbours_); });
           failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
         },
         integrator_);

@@ -47,20 +47,27 @@ template <int D>
 struct RepulsiveWallsPass {
   RepulsiveForce force;
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    neighbours.withSeparation([&](const auto& sep) {
-      const std::size_t nFluid = P.fluidCount();
-#pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
-      for (std::size_t i = 0; i < nFluid; ++i) {
-        Vec<D> a = Vec<D>::Zero();
-        forEachNeighbourSeparationByKind(
-            P, neighbours, i, sep, [](std::uint32_t, const Vec<D>&) {},
-            [&](std::uint32_t, const Vec<D>& rij) { a += force.factor(rij.norm()) * rij; });
-        P.a[i] += a;
-      }
-    });
-    return term_bits::kRepulsiveWalls;
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned RepulsiveWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+  neighbours.withSeparation([&](const auto& sep) {
+    const std::size_t nFluid = P.fluidCount();
+#pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
+    for (std::size_t i = 0; i < nFluid; ++i) {
+      Vec<D> a = Vec<D>::Zero();
+      forEachNeighbourSeparationByKind(
+          P, neighbours, i, sep, [](std::uint32_t, const Vec<D>&) {},
+          [&](std::uint32_t, const Vec<D>& rij) { a += force.factor(rij.norm()) * rij; });
+      P.a[i] += a;
+    }
+  });
+  return term_bits::kRepulsiveWalls;
+}
+
+extern template struct RepulsiveWallsPass<2>;
+extern template struct RepulsiveWallsPass<3>;
 
 }  // namespace sph

@@ -14,10 +14,11 @@ template <int D>
 struct ExplicitEuler {
   static constexpr const char* name = "euler";
   static constexpr const char* summary = "explicit Euler: first order, unstable for undamped waves (the known-bad baseline)";
+  static constexpr bool kDensityRateApart = false;  // the force evaluation gives d rho/dt
   static FieldSet needs(bool) { return 0; }
 
-  template <class Evaluate, class Constrain>
-  void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain) const {
+  template <class Evaluate, class Constrain, class DensityRate>
+  void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain, DensityRate&&) const {
     const std::size_t n = P.size(), nFluid = P.fluidCount();
     const bool density = !P.drho.empty();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)

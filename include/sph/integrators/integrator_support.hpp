@@ -3,9 +3,11 @@
 // rho <- drho for every particle that carries a density rate (continuity
 // density; walls too with dynamic boundary particles). Walls never move.
 //
-//   advance(P, dt, evaluate, constrain)  everything up to the step's last
-//       evaluation; constrain(P, i) applies the walls to particle i right
-//       after its position update;
+//   advance(P, dt, evaluate, constrain, densityRate)  everything up to the
+//       step's last evaluation; constrain(P, i) applies the walls to
+//       particle i right after its position update; densityRate() fills
+//       drho at the current x and v (for kDensityRateApart integrators,
+//       whose force evaluations then leave drho alone);
 //   finish(P, i, dt)  completes particle i after that evaluation. The scene
 //       fuses it with the state check and the time-step reductions, so a
 //       step has few parallel regions.

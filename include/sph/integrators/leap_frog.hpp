@@ -1,18 +1,28 @@
 // Leap-frog, kick-drift-kick (Verlet; symplectic, second order):
 //
-//   v^{n+1/2} = v^n + a^n dt/2                rho^{n+1/2} = rho^n + drho^n dt/2
+//   v^{n+1/2} = v^n + a^n dt/2
 //   x^{n+1}   = x^n + v^{n+1/2} dt
-//   v^{n+1}   = v^{n+1/2} + a^{n+1} dt/2      rho^{n+1} = rho^{n+1/2} + drho^{n+1} dt/2
+//   rho^{n+1} = rho^n + D(x^{n+1/2}, v^{n+1/2}) dt     (continuity density)
+//   v^{n+1}   = v^{n+1/2} + a^{n+1} dt/2,  a^{n+1} = a(x^{n+1}, rho^{n+1})
 //
-// (density only when it is a state variable, for every particle that has
-// one; positions and velocities for the fluid.) For a fixed dt this is the
-// seed scheme's leap-frog exactly: its half-step start v^{1/2} = v^0 + a^0
-// dt/2 and v^{n+1/2} = v^{n-1/2} + a^n dt are the same numbers, since v^n =
-// v^{n-1/2} + a^n dt/2. Between drift and kick the forces at x^{n+1} see the
-// estimates v^{n+1/2} + a^n dt/2 and rho^{n+1/2} + drho^n dt/2 (the seed's
-// choice for viscosity). With constant acceleration it reproduces
-// x0 + v0 t + a t^2/2 to round-off. The state between steps is x, v (and
-// rho): a run resumed from a snapshot continues bit for bit.
+// (positions and velocities for the fluid; density for every particle that
+// has one.) With continuity density rho is advanced like a position: its
+// rate D (continuity and its diffusion) is a pair loop of its own
+// (Model::densityRate), at the half-step velocity and the half-step
+// positions, on the neighbour list of x^n. The pair (rho, v) of a sound
+// wave is then a staggered Stormer-Verlet pair, stable for omega dt <= 2 as
+// tests/reference/acoustic_cfl_limits.csv assumes. (Kicking rho like v with
+// the rate of the predicted state, in the one force evaluation, is Heun's
+// method for that pair: unstable for every dt, and measured stable only to
+// c dt/h = 0.29 on the lattice of validation/stability_atlas.py.)
+//
+// For a fixed dt this is the seed scheme's leap-frog exactly: its half-step
+// start v^{1/2} = v^0 + a^0 dt/2 and v^{n+1/2} = v^{n-1/2} + a^n dt are the
+// same numbers, since v^n = v^{n-1/2} + a^n dt/2. Between drift and kick the
+// forces at x^{n+1} see the estimate v^{n+1/2} + a^n dt/2 (the seed's choice
+// for viscosity). With constant acceleration it reproduces x0 + v0 t + a
+// t^2/2 to round-off. The state between steps is x, v (and rho): a run
+// resumed from a snapshot continues bit for bit.
 #pragma once
 
 #include "sph/integrators/integrator_support.hpp"
@@ -23,32 +33,44 @@ template <int D>
 struct LeapFrog {
   static constexpr const char* name = "leap_frog";
   static constexpr const char* summary = "kick-drift-kick leap-frog: symplectic, second order, one evaluation per step";
-  static FieldSet needs(bool density) {
-    return fieldBit(kFieldVHalf) | (density ? fieldBit(kFieldRhoHalf) : 0);
-  }
+  static constexpr bool kDensityRateApart = true;
+  static FieldSet needs(bool) { return fieldBit(kFieldVHalf); }
 
   // Up to the step's last evaluation; finish() completes each particle.
-  template <class Evaluate, class Constrain>
-  void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain) const {
+  template <class Evaluate, class Constrain, class DensityRate>
+  void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain,
+               DensityRate&& densityRate) const {
     const std::size_t n = P.size(), nFluid = P.fluidCount();
-    const bool density = !P.drho.empty();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-    for (std::size_t i = 0; i < n; ++i) {
-      if (density) {
-        P.rhoHalf[i] = P.rho[i] + (dt / 2) * P.drho[i];
-        P.rho[i] = P.rhoHalf[i] + (dt / 2) * P.drho[i];
+    if (P.drho.empty()) {
+#pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
+      for (std::size_t i = 0; i < nFluid; ++i) {
+        P.vHalf[i] = P.v[i] + (dt / 2) * P.a[i];
+        P.x[i] += dt * P.driftVelocity(i, P.vHalf[i]);
+        P.v[i] = P.vHalf[i] + (dt / 2) * P.a[i];
+        constrain(P, i);
       }
-      if (i >= nFluid) continue;
-      P.vHalf[i] = P.v[i] + (dt / 2) * P.a[i];
-      P.x[i] += dt * P.driftVelocity(i, P.vHalf[i]);
-      P.v[i] = P.vHalf[i] + (dt / 2) * P.a[i];
-      constrain(P, i);
+    } else {
+      // Kick and half drift; the density rate at (x^{n+1/2}, v^{n+1/2}).
+#pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
+      for (std::size_t i = 0; i < nFluid; ++i) {
+        P.vHalf[i] = P.v[i] + (dt / 2) * P.a[i];
+        P.v[i] = P.vHalf[i];
+        P.x[i] += (dt / 2) * P.driftVelocity(i, P.vHalf[i]);
+      }
+      densityRate();
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
+      for (std::size_t i = 0; i < n; ++i) {
+        P.rho[i] += dt * P.drho[i];
+        if (i >= nFluid) continue;
+        P.x[i] += (dt / 2) * P.driftVelocity(i, P.vHalf[i]);
+        P.v[i] = P.vHalf[i] + (dt / 2) * P.a[i];
+        constrain(P, i);
+      }
     }
     evaluate();
   }
 
   void finish(Particles<D>& P, std::size_t i, Real dt) const {
-    if (!P.drho.empty()) P.rho[i] = P.rhoHalf[i] + (dt / 2) * P.drho[i];
     if (i < P.fluidCount()) P.v[i] = P.vHalf[i] + (dt / 2) * P.a[i];
   }
 };

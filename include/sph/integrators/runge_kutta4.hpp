@@ -17,13 +17,14 @@ template <int D>
 struct RungeKutta4 {
   static constexpr const char* name = "rk4";
   static constexpr const char* summary = "classical Runge-Kutta: fourth order, four evaluations per step";
+  static constexpr bool kDensityRateApart = false;  // the force evaluation gives d rho/dt
   static FieldSet needs(bool density) {
     return fieldBit(kFieldX0) | fieldBit(kFieldV0) | fieldBit(kFieldDx) | fieldBit(kFieldDv) |
            (density ? fieldBit(kFieldRho0) | fieldBit(kFieldDrhoSum) : 0);
   }
 
-  template <class Evaluate, class Constrain>
-  void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain) const {
+  template <class Evaluate, class Constrain, class DensityRate>
+  void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain, DensityRate&&) const {
     const std::size_t n = P.size(), nFluid = P.fluidCount();
     const bool density = !P.drho.empty();
     auto drift = [&](std::size_t i) { return P.driftVelocity(i, P.v[i]); };

@@ -46,8 +46,18 @@ class Model {
   // rho (or its rate), p, a and the other rates at the current state. The
   // neighbour list must have been built on these positions.
   void evaluate(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-    executed_ = runPasses(passes_, P, neighbours, ctx);
+    executed_ = runPasses(passes_, P, neighbours, ctx) | (ctx.densityRateApart ? densityRateBits_ : 0u);
     executedAfterStep_ = 0;
+  }
+
+  // d rho/dt alone, at the particles' x and v with the given neighbour list
+  // (the force pass's continuity and diffusion terms in a loop of their
+  // own): for the integrators that advance rho like a position. Nothing
+  // without continuity density.
+  void densityRate(Particles<D>& P, const NeighbourList<D>& neighbours) const {
+    densityRateBits_ = 0;
+    for (const Pass<D>& pass : passes_)
+      if (const auto* f = std::get_if<WcsphForcePass<D>>(&pass)) densityRateBits_ |= f->densityRate(P, neighbours);
   }
 
   // After step ctx.step has finished (the state check passed): the passes
@@ -55,6 +65,14 @@ class Model {
   // last evaluation.
   void afterStep(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
     if (!afterStep_.empty()) executedAfterStep_ = runPasses(afterStep_, P, neighbours, ctx);
+  }
+
+  // After a resume from a snapshot: the derived fields the density-rate pass
+  // reads before the first evaluation (the CSPM matrices L_i), which a
+  // snapshot does not hold.
+  void resumed(Particles<D>& P, const NeighbourList<D>& neighbours) const {
+    for (const Pass<D>& pass : passes_)
+      if (const auto* c = std::get_if<CspmCorrectionPass<D>>(&pass)) c->run(P, neighbours, StepContext{});
   }
 
   // Density alone (the summation-density pass), for the seed's mass scaling.
@@ -107,7 +125,7 @@ class Model {
   Info info_;
   std::vector<Pass<D>> passes_;
   std::vector<Pass<D>> afterStep_;
-  mutable unsigned executed_ = 0, executedAfterStep_ = 0;
+  mutable unsigned executed_ = 0, executedAfterStep_ = 0, densityRateBits_ = 0;
   mutable CorrectionCounts counts_;
 };
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "sph/kernels/kernels.hpp"
+#include "sph/particles.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/colour_surface_tension.hpp"
 
@@ -19,15 +20,22 @@ struct ColourFieldPass {
   Real minNormal = 0;  // |n| > minNormal: a reliable normal
   bool twoPhase = false;  // a colour region was given: difference forms
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    std::visit(
-        [&](const auto& k) {
-          neighbours.withSeparation(
-              [&](const auto& sep) { computeColourField(P, neighbours, k, method, minNormal, twoPhase, sep); });
-        },
-        kernel);
-    return term_bits::kColourField;
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned ColourFieldPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+  std::visit(
+      [&](const auto& k) {
+        neighbours.withSeparation(
+            [&](const auto& sep) { computeColourField(P, neighbours, k, method, minNormal, twoPhase, sep); });
+      },
+      kernel);
+  return term_bits::kColourField;
+}
+
+extern template struct ColourFieldPass<2>;
+extern template struct ColourFieldPass<3>;
 
 }  // namespace sph

@@ -29,6 +29,7 @@
 
 #include "sph/kernels/kernels.hpp"
 #include "sph/neighbour_list.hpp"
+#include "sph/particles.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/term_bits.hpp"
 
@@ -75,32 +76,39 @@ struct CspmCorrectionPass {
   Kernel<D> kernel;
   bool wallsInSums = true;  // repulsive walls: false
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-    const std::size_t n = P.fluidCount();
-    long fallbacks = 0;
-    std::visit(
-        [&](const auto& k) {
-          neighbours.withSeparation([&](const auto& sep) {
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
-            for (std::size_t i = 0; i < n; ++i) {
-              const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(i, P, neighbours, k, wallsInSums, sep));
-              if (L) {
-                P.cspmL[i] = *L;
-              } else {
-                P.cspmL[i] = Mat<D>::Identity();
-                ++fallbacks;
-              }
-            }
-          });
-        },
-        kernel);
-    if (ctx.counts) {
-      ctx.counts->cspmParticles += static_cast<long>(n);
-      ctx.counts->cspmFallbacks += fallbacks;
-    }
-    return term_bits::kCspmCorrection;
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned CspmCorrectionPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
+  const std::size_t n = P.fluidCount();
+  long fallbacks = 0;
+  std::visit(
+      [&](const auto& k) {
+        neighbours.withSeparation([&](const auto& sep) {
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
+          for (std::size_t i = 0; i < n; ++i) {
+            const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(i, P, neighbours, k, wallsInSums, sep));
+            if (L) {
+              P.cspmL[i] = *L;
+            } else {
+              P.cspmL[i] = Mat<D>::Identity();
+              ++fallbacks;
+            }
+          }
+        });
+      },
+      kernel);
+  if (ctx.counts) {
+    ctx.counts->cspmParticles += static_cast<long>(n);
+    ctx.counts->cspmFallbacks += fallbacks;
+  }
+  return term_bits::kCspmCorrection;
+}
+
+extern template struct CspmCorrectionPass<2>;
+extern template struct CspmCorrectionPass<3>;
 
 // The pair loop's gradient correction: gradWC = L_i grad_i W_ij.
 template <int D>

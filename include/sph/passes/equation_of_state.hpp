@@ -8,6 +8,7 @@
 #pragma once
 
 #include "sph/neighbour_list.hpp"
+#include "sph/particles.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/term_bits.hpp"
@@ -24,13 +25,20 @@ struct EquationOfStatePass {
 
   Real rho0 = 0;               // walls: the least density they may have
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const {
-    const std::size_t n = walls ? P.size() : P.fluidCount();
-    if (walls)
-      for (std::size_t i = P.fluidCount(); i < n; ++i) P.rho[i] = std::max(P.rho[i], rho0);
-    std::visit([&](const auto& e) { computePressure(P, e, n, clampNegative); }, eos);
-    return term_bits::kEquationOfState;
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned EquationOfStatePass<D>::run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const {
+  const std::size_t n = walls ? P.size() : P.fluidCount();
+  if (walls)
+    for (std::size_t i = P.fluidCount(); i < n; ++i) P.rho[i] = std::max(P.rho[i], rho0);
+  std::visit([&](const auto& e) { computePressure(P, e, n, clampNegative); }, eos);
+  return term_bits::kEquationOfState;
+}
+
+extern template struct EquationOfStatePass<2>;
+extern template struct EquationOfStatePass<3>;
 
 }  // namespace sph

@@ -87,34 +87,41 @@ struct MlsDensityPass {
   EquationOfState eos = LinearEos{1, 1};
   bool clampNegative = false;  // negative_pressure = clamp
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-    if (!reinitDue(ctx, every)) return 0;
-    const std::size_t n = P.fluidCount();
-    long fallbacks = 0;
-    std::visit(
-        [&](const auto& k) {
-          neighbours.withSeparation([&](const auto& sep) {
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
-            for (std::size_t i = 0; i < n; ++i) {
-              const std::optional<Real> rho = mlsDensity(i, P, neighbours, k, wallsInSums, sep);
-              if (rho) {
-                P.rhoReinit[i] = *rho;
-              } else {
-                P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums, sep);
-                ++fallbacks;
-              }
-            }
-          });
-        },
-        kernel);
-    applyReinitialisedDensity(P, eos, clampNegative);
-    if (ctx.counts) {
-      ++ctx.counts->reinitSteps;
-      ctx.counts->reinitParticles += static_cast<long>(n);
-      ctx.counts->mlsFallbacks += fallbacks;
-    }
-    return term_bits::kMlsDensity;
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned MlsDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
+  if (!reinitDue(ctx, every)) return 0;
+  const std::size_t n = P.fluidCount();
+  long fallbacks = 0;
+  std::visit(
+      [&](const auto& k) {
+        neighbours.withSeparation([&](const auto& sep) {
+#pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
+          for (std::size_t i = 0; i < n; ++i) {
+            const std::optional<Real> rho = mlsDensity(i, P, neighbours, k, wallsInSums, sep);
+            if (rho) {
+              P.rhoReinit[i] = *rho;
+            } else {
+              P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums, sep);
+              ++fallbacks;
+            }
+          }
+        });
+      },
+      kernel);
+  applyReinitialisedDensity(P, eos, clampNegative);
+  if (ctx.counts) {
+    ++ctx.counts->reinitSteps;
+    ctx.counts->reinitParticles += static_cast<long>(n);
+    ctx.counts->mlsFallbacks += fallbacks;
+  }
+  return term_bits::kMlsDensity;
+}
+
+extern template struct MlsDensityPass<2>;
+extern template struct MlsDensityPass<3>;
 
 }  // namespace sph

@@ -41,9 +41,10 @@ struct ForceEpilogue {
   }
 };
 
-// Wall particles' own rates: their density rate (dynamic walls).
+// A particle's density rate alone: the wall particles' own (dynamic walls),
+// and the fluid's in the density-rate pass (wcsph_forces.hpp).
 template <int D>
-struct WallEpilogue {
+struct DensityRateEpilogue {
   void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const { P.drho[i] = r.drho; }
 };
 
@@ -53,16 +54,23 @@ struct SeedForcePass {
   std::optional<SeedViscosity> viscosity;
   BodyForces<D> bodies;
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    auto loop = [&](const auto& pack) {
-      using Pack = std::decay_t<decltype(pack)>;
-      constexpr unsigned writes = PackTraits<Pack>::writes;
-      return runPairLoop(P, neighbours, NoPairKernel{}, pressure.kernels.support(), pack, pack, std::tuple<>(),
-                         ForceEpilogue<D, writes>{bodies}, WallEpilogue<D>{});
-    };
-    const unsigned bits = viscosity ? loop(std::make_tuple(pressure, *viscosity)) : loop(std::make_tuple(pressure));
-    return bits | bodies.bits();
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned SeedForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+  auto loop = [&](const auto& pack) {
+    using Pack = std::decay_t<decltype(pack)>;
+    constexpr unsigned writes = PackTraits<Pack>::writes;
+    return runPairLoop(P, neighbours, NoPairKernel{}, pressure.kernels.support(), pack, pack, std::tuple<>(),
+                       ForceEpilogue<D, writes>{bodies}, DensityRateEpilogue<D>{});
+  };
+  const unsigned bits = viscosity ? loop(std::make_tuple(pressure, *viscosity)) : loop(std::make_tuple(pressure));
+  return bits | bodies.bits();
+}
+
+extern template struct SeedForcePass<2>;
+extern template struct SeedForcePass<3>;
 
 }  // namespace sph

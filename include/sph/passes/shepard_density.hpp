@@ -28,6 +28,7 @@
 
 #include "sph/kernels/kernels.hpp"
 #include "sph/neighbour_list.hpp"
+#include "sph/particles.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/term_bits.hpp"
@@ -74,24 +75,31 @@ struct ShepardDensityPass {
   EquationOfState eos = LinearEos{1, 1};
   bool clampNegative = false;  // negative_pressure = clamp
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-    if (!reinitDue(ctx, every)) return 0;
-    const std::size_t n = P.fluidCount();
-    std::visit(
-        [&](const auto& k) {
-          neighbours.withSeparation([&](const auto& sep) {
-#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-            for (std::size_t i = 0; i < n; ++i) P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums, sep);
-          });
-        },
-        kernel);
-    applyReinitialisedDensity(P, eos, clampNegative);
-    if (ctx.counts) {
-      ++ctx.counts->reinitSteps;
-      ctx.counts->reinitParticles += static_cast<long>(n);
-    }
-    return term_bits::kShepardDensity;
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned ShepardDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
+  if (!reinitDue(ctx, every)) return 0;
+  const std::size_t n = P.fluidCount();
+  std::visit(
+      [&](const auto& k) {
+        neighbours.withSeparation([&](const auto& sep) {
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
+          for (std::size_t i = 0; i < n; ++i) P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums, sep);
+        });
+      },
+      kernel);
+  applyReinitialisedDensity(P, eos, clampNegative);
+  if (ctx.counts) {
+    ++ctx.counts->reinitSteps;
+    ctx.counts->reinitParticles += static_cast<long>(n);
+  }
+  return term_bits::kShepardDensity;
+}
+
+extern template struct ShepardDensityPass<2>;
+extern template struct ShepardDensityPass<3>;
 
 }  // namespace sph

@@ -11,6 +11,7 @@
 #include "sph/kernels/kernels.hpp"
 #include "sph/kernels/seed_kernels.hpp"
 #include "sph/neighbour_list.hpp"
+#include "sph/particles.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/summation_density.hpp"
@@ -41,11 +42,18 @@ struct SummationDensityPass {
   bool wallsInSums = true;     // repulsive walls do not count
   bool clampNegative = false;  // negative_pressure = clamp
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    std::visit([&](const auto& W, const auto& e) { computeSummationDensity(P, neighbours, W, e, wallsInSums, clampNegative); },
-               kernel, eos);
-    return term_bits::kSummationDensity | term_bits::kEquationOfState;
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned SummationDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+  std::visit([&](const auto& W, const auto& e) { computeSummationDensity(P, neighbours, W, e, wallsInSums, clampNegative); },
+             kernel, eos);
+  return term_bits::kSummationDensity | term_bits::kEquationOfState;
+}
+
+extern template struct SummationDensityPass<2>;
+extern template struct SummationDensityPass<3>;
 
 }  // namespace sph

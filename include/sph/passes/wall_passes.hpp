@@ -29,17 +29,24 @@ struct AdamiWallsPass {
   Real rho0 = 1000;
   std::optional<SinusoidalWallMotion<D>> motion;  // a paddle's a_w (wall_motion.hpp)
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-    const WallAcceleration<D> moving =
-        motion ? WallAcceleration<D>{motion->firstId, motion->endId, motion->acceleration(ctx.time)}
-               : WallAcceleration<D>{};
-    std::visit(
-        [&](const auto& k, const auto& e) {
-          extrapolateToWalls(P, neighbours, k, e, bodyAcceleration, noSlip, rho0, moving);
-        },
-        kernel, eos);
-    return term_bits::kAdamiWalls;
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned AdamiWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
+  const WallAcceleration<D> moving =
+      motion ? WallAcceleration<D>{motion->firstId, motion->endId, motion->acceleration(ctx.time)}
+             : WallAcceleration<D>{};
+  std::visit(
+      [&](const auto& k, const auto& e) {
+        extrapolateToWalls(P, neighbours, k, e, bodyAcceleration, noSlip, rho0, moving);
+      },
+      kernel, eos);
+  return term_bits::kAdamiWalls;
+}
+
+extern template struct AdamiWallsPass<2>;
+extern template struct AdamiWallsPass<3>;
 
 }  // namespace sph

@@ -90,33 +90,68 @@ struct WcsphForcePass {
   Real spacing = 0;                   // dx of f_ij = W(r)/W(dx)
   std::optional<ColourSurfaceTension<D>> surfaceTension;  // from the colour pre-pass
 
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-    const unsigned bits = std::visit(
-        [&](const auto& k, const auto& visc) {
-          using K = std::decay_t<decltype(k)>;
-          auto loop = [&](const auto& pressure, const auto& correct) {
-            const ContinuityDensity rate{continuity};
-            const MonaghanArtificialPressure<K> tension{k, artificialPressure, artificialPressureN,
-                                                        artificialPressure > 0 ? 1 / k.W(spacing) : 0};
-            const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusion, pressure, tension),
-                                                   viscosityPack<K, false>(k, visc),
-                                                   std::make_tuple(Xsph<K>{k, xsphEpsilon}));
-            const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, pressure),
-                                                           viscosityPack<K, true>(k, visc, wallViscosity));
-            constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
-            return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
-                               std::make_tuple(ContinuityDensity{wallDensityRates}),
-                               ForceEpilogue<D, writes>{bodies, xsphEpsilon, continuity,
-                                                        surfaceTension ? &*surfaceTension : nullptr},
-                               WallEpilogue<D>{}, PairLoopParts{wallPairs, wallDensityRates}, correct);
-          };
-          if (cspm) return loop(CspmPressure{}, CspmCorrection<D>{P.cspmL.data()});
-          return loop(SymmetricPressure{}, NoGradientCorrection{});
-        },
-        kernel, viscosity);
-    const unsigned walls = wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
-    return bits | walls | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
-  }
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
+
+  // d rho/dt alone (continuity, its diffusion, the dynamic walls' rates) at
+  // the particles' x and v, with the given neighbour list: for the
+  // integrators that advance rho like a position (ctx.densityRateApart).
+  unsigned densityRate(Particles<D>& P, const NeighbourList<D>& neighbours) const;
 };
+
+// Defined here, instantiated once (src/instantiate_*.cpp).
+template <int D>
+unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
+  // The density rate is this loop's unless the integrator computes it apart.
+  const bool rateHere = continuity && !ctx.densityRateApart;
+  const bool wallRatesHere = wallDensityRates && rateHere;
+  DensityDiffusion<D> diffusionHere = diffusion;
+  if (!rateHere) diffusionHere.coefficient = 0;
+  const unsigned bits = std::visit(
+      [&](const auto& k, const auto& visc) {
+        using K = std::decay_t<decltype(k)>;
+        auto loop = [&](const auto& pressure, const auto& correct) {
+          const ContinuityDensity rate{rateHere};
+          const MonaghanArtificialPressure<K> tension{k, artificialPressure, artificialPressureN,
+                                                      artificialPressure > 0 ? 1 / k.W(spacing) : 0};
+          const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusionHere, pressure, tension),
+                                                 viscosityPack<K, false>(k, visc),
+                                                 std::make_tuple(Xsph<K>{k, xsphEpsilon}));
+          const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, pressure),
+                                                         viscosityPack<K, true>(k, visc, wallViscosity));
+          constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
+          return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
+                             std::make_tuple(ContinuityDensity{wallRatesHere}),
+                             ForceEpilogue<D, writes>{bodies, xsphEpsilon, rateHere,
+                                                      surfaceTension ? &*surfaceTension : nullptr},
+                             DensityRateEpilogue<D>{}, PairLoopParts{wallPairs, wallRatesHere}, correct);
+        };
+        if (cspm) return loop(CspmPressure{}, CspmCorrection<D>{P.cspmL.data()});
+        return loop(SymmetricPressure{}, NoGradientCorrection{});
+      },
+      kernel, viscosity);
+  const unsigned walls = wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
+  return bits | walls | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
+}
+
+template <int D>
+unsigned WcsphForcePass<D>::densityRate(Particles<D>& P, const NeighbourList<D>& neighbours) const {
+  if (!continuity) return 0;
+  const unsigned bits = std::visit(
+      [&](const auto& k) {
+        auto loop = [&](const auto& correct) {
+          const ContinuityDensity rate{true};
+          return runPairLoop(P, neighbours, k, k.support(), std::make_tuple(rate, diffusion), std::make_tuple(rate),
+                             std::make_tuple(ContinuityDensity{wallDensityRates}), DensityRateEpilogue<D>{},
+                             DensityRateEpilogue<D>{}, PairLoopParts{wallPairs, wallDensityRates}, correct);
+        };
+        if (cspm) return loop(CspmCorrection<D>{P.cspmL.data()});
+        return loop(NoGradientCorrection{});
+      },
+      kernel);
+  return bits | (wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u);
+}
+
+extern template struct WcsphForcePass<2>;
+extern template struct WcsphForcePass<3>;
 
 }  // namespace sph
