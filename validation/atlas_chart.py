@@ -111,10 +111,10 @@ def leakage_map(folder, data):
         fail = "leaked" if r["failure_above"].startswith("leaked") else (
             "blew up" if r["failure_above"].startswith("blew") else None)
         if fail:
-            ax.barh(k, 2 - t, left=t, color=colour[fail], alpha=0.35)
-            ax.text(min(t + 0.02, 1.7), k, fail, va="center", fontsize=8)
+            ax.barh(k, 4 - t, left=t, color=colour[fail], alpha=0.35)
+            ax.text(t + 0.05, k, fail, va="center", fontsize=8)
         labels.append(f"{r['boundary']}, {r['wall_layers']} layer{'s' if r['wall_layers'] != '1' else ''}")
-    finish_bars(fig, ax, folder, "leakage", labels, 2,
+    finish_bars(fig, ax, folder, "leakage", labels, 4,
                 "c0 dt / h  (green: the fluid stays inside the walls to the end)",
                 "Dam break: wall layers and time step against leakage")
 
