@@ -5,6 +5,7 @@
                   density, against the linear acoustic analysis
   euler.csv       explicit Euler's energy growth per step against theory
   pairing.csv     the paired fraction over h/dx per kernel
+  tensile.csv     the smallest particle gap over time per artificial pressure
   leakage.csv     the largest c0 dt / h that keeps the dam break's fluid,
                   per boundary x wall layers
 
@@ -100,6 +101,21 @@ def pairing_map(folder, data):
     save(fig, folder, "pairing")
 
 
+def tensile_map(folder, data):
+    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    for eps in sorted({r["artificial_pressure"] for r in data}, key=float):
+        sel = sorted((float(r["time"]), float(r["smallest_gap_dx"])) for r in data if r["artificial_pressure"] == eps)
+        ax.plot([t for t, _ in sel], [g for _, g in sel], "o-", ms=3,
+                label="no correction" if float(eps) == 0 else f"artificial pressure eps = {eps}")
+    ax.axhline(0.5, color="k", ls=":", lw=1)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("smallest particle gap / dx")
+    ax.set_title("Tensile instability: an expanding Tait block")
+    ax.legend(fontsize=8)
+    ax.grid(True, alpha=0.3)
+    save(fig, folder, "tensile")
+
+
 def leakage_map(folder, data):
     data = sorted(latest(data, "boundary", "wall_layers"), key=lambda r: (r["boundary"], int(r["wall_layers"])))
     fig, ax = plt.subplots(figsize=(8, 0.5 * len(data) + 1.5))
@@ -125,7 +141,7 @@ def main():
     folder = sys.argv[1]
     made = 0
     for name, draw in (("thresholds", timestep_map), ("euler", euler_map), ("pairing", pairing_map),
-                       ("leakage", leakage_map)):
+                       ("tensile", tensile_map), ("leakage", leakage_map)):
         path = os.path.join(folder, f"{name}.csv")
         if os.path.exists(path):
             draw(folder, rows(path))

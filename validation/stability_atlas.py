@@ -21,6 +21,10 @@ with atlas_chart.py):
            against the theory ln(1 + (omega_max dt)^2) (euler.csv)
   pairing  the h/dx from which a kernel pairs on a lattice under pressure
            (pairing.csv)
+  tensile  the expanding Tait block of cases/tensile_block.case (negative
+           pressure) with Monaghan's artificial pressure eps = 0 ... 0.3:
+           the smallest particle gap over time and when it first falls
+           below 0.5 dx (tensile.csv)
   leakage  the largest c0 dt / h at which the dam break keeps its fluid
            inside the walls, per boundary treatment and number of wall
            layers (leakage.csv)
@@ -288,6 +292,41 @@ def mode_pairing(a):
               else f"{kernel}: no pairing at h/dx {a.hdx_list[0]} ... {a.hdx_list[-1]}")
 
 
+def nearest_gaps(x):
+    """Each particle's distance to its nearest neighbour (no periodicity)."""
+    d = x[:, None, :] - x[None, :, :]
+    r2 = (d ** 2).sum(axis=2)
+    np.fill_diagonal(r2, np.inf)
+    return np.sqrt(r2.min(axis=1))
+
+
+def mode_tensile(a):
+    """The tensile instability, provoked: a free block whose Tait pressure
+    goes negative as it expands; without a correction its particles clump
+    (the smallest gap collapses), Monaghan's artificial pressure delays it."""
+    sys.path.insert(0, HERE)
+    import observables
+    case = os.path.join(HERE, "..", "cases", "tensile_block.case")
+    for eps in a.eps:
+        out = os.path.join(a.workdir, "run")
+        cmd = [a.sph, "run", case, "--output", out, "--overwrite", "--no-progress", "--threads", "1",
+               "--artificial_pressure", repr(eps), "--end_time", repr(a.tensile_time), "--regime_check", "off"]
+        r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           cwd=os.path.join(HERE, ".."))
+        if r.returncode not in (0, 3):
+            raise SystemExit("sph failed:\n" + " ".join(cmd) + "\n" + r.stdout)
+        dx = 0.01
+        onset = None
+        for snap in observables.Run(out).snapshots():
+            gap = nearest_gaps(snap.x[snap.fluid][:, :2]).min() / dx
+            append(os.path.join(a.workdir, "tensile.csv"), "artificial_pressure,time,smallest_gap_dx",
+                   f"{eps},{snap.time:.4g},{gap:.4f}")
+            if onset is None and gap < 0.5:
+                onset = snap.time
+        print(f"artificial pressure eps = {eps}: smallest gap {gap:.3f} dx at t = {snap.time:.3g} s; "
+              + (f"below 0.5 dx from t = {onset:.3g} s" if onset is not None else "never below 0.5 dx"), flush=True)
+
+
 def leak_trial(a, boundary, layers, C):
     """The dam break (coarse: dx 0.02) with c0 dt / h = C: (kept its fluid,
     what happened)."""
@@ -327,7 +366,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sph", default="build/sph")
     ap.add_argument("--workdir", required=True)
-    ap.add_argument("--mode", default="timestep", choices=["timestep", "euler", "pairing", "leakage"])
+    ap.add_argument("--mode", default="timestep", choices=["timestep", "euler", "pairing", "tensile", "leakage"])
     ap.add_argument("--integrator", default="leap_frog")
     ap.add_argument("--kernel", default="cubic_spline")
     ap.add_argument("--density", default="continuity")
@@ -342,6 +381,8 @@ def main():
     ap.add_argument("--pairing-time", type=float, default=300, help="pairing: run length in h / c")
     ap.add_argument("--pairing-pressure", type=float, default=0.01,
                     help="pairing: the uniform pressure in rho0 c^2 (the dam break floor, rho0 g 2a: 0.0025)")
+    ap.add_argument("--eps", type=float, nargs="+", default=[0, 0.05, 0.1, 0.2, 0.3], help="tensile")
+    ap.add_argument("--tensile-time", type=float, default=0.4, help="tensile: run length [s]")
     ap.add_argument("--boundaries", nargs="+", default=["dummy", "dynamic", "repulsive"], help="leakage")
     ap.add_argument("--layers", type=int, nargs="+", default=[1, 2, 3], help="leakage: wall layers to try")
     ap.add_argument("--leak-dx", type=float, default=0.02)
@@ -351,7 +392,8 @@ def main():
     ap.add_argument("--check", action="store_true")
     a = ap.parse_args()
     os.makedirs(a.workdir, exist_ok=True)
-    {"timestep": mode_timestep, "euler": mode_euler, "pairing": mode_pairing, "leakage": mode_leakage}[a.mode](a)
+    {"timestep": mode_timestep, "euler": mode_euler, "pairing": mode_pairing, "tensile": mode_tensile,
+     "leakage": mode_leakage}[a.mode](a)
 
 
 if __name__ == "__main__":
