@@ -114,8 +114,9 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     // The stability atlas's measured limits at h/dx 1.3 (README, "Stability atlas").
     const bool rk4 = c.integrator == "rk4", wendland = c.kernel == "wendland_c2";
     const Real limit = rk4 ? (wendland ? 2.56 : 2.67) : (wendland ? 1.81 : 1.88);
-    out << "    acoustic       c0 dt / h = " << fmt(courant) << " (aim <= 0.25; " << (rk4 ? "rk4" : "leap-frog")
-        << " measured unstable from ~" << fmt(limit) << ")\n";
+    out << "    acoustic       c0 dt / h = " << fmt(courant) << " (aim <= 0.25; ";
+    if (c.integrator == "euler") out << "euler is unstable at every dt)\n";
+    else out << c.integrator << " measured unstable from ~" << fmt(limit) << ")\n";
     if (c.cfl == 0 && courant > 0.5 * limit)
       warn("c0 dt / h = " + fmt(courant) + " is past half the measured acoustic limit " + fmt(limit) +
            ": lower dt to " + fmt(0.25 * h / c0) + " s");

@@ -220,7 +220,7 @@ void cspmGradient() {
   }
   BOOST_TEST(checkedSurface >= static_cast<std::size_t>(std::pow(s.n - 7, D - 1)));
 
-  WcsphForcePass<D> forces{s.kernel, NoViscosity{}, {}};
+  WcsphForcePass<D> forces{s.kernel, NoViscosity{}, {}, 0, false, {}, true, false, true, false, 0, 4, 0, std::nullopt};
   Vec<D> G;
   for (int d = 0; d < D; ++d) G[d] = 2e4 + 1e4 * d;
 

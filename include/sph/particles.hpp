@@ -211,6 +211,10 @@ struct Particles : FieldArrays<D> {
     // Density is a state variable only when it is integrated (a density
     // rate exists); summation density recomputes it after every sort.
     if (((allocated_ >> kFieldDrho) & 1u) == 0) permuted_ &= ~fieldBit(kFieldRho);
+    // Leap-frog and symplectic Euler compute d rho/dt before the step's
+    // sort (their density-rate pass, at the half-step or new velocity), so
+    // it must travel with its particle to the snapshot after the sort.
+    if ((allocated_ >> kFieldDrho) & 1u) permuted_ |= fieldBit(kFieldDrho);
     shadow_.sizeFields(permuted_, size());
   }
 

@@ -64,7 +64,11 @@ class Model {
   // that act on the finished state, with the neighbour list of the step's
   // last evaluation.
   void afterStep(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-    if (!afterStep_.empty()) executedAfterStep_ = runPasses(afterStep_, P, neighbours, ctx);
+    if (afterStep_.empty()) return;
+    executedAfterStep_ = runPasses(afterStep_, P, neighbours, ctx);
+    // A re-initialised density changes the volumes of the CSPM matrices the
+    // next step's density-rate pass reads: refresh them, as a resume does.
+    if (executedAfterStep_ != 0) resumed(P, neighbours);
   }
 
   // After a resume from a snapshot: the derived fields the density-rate pass
