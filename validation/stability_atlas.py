@@ -94,15 +94,19 @@ def write_lattice(path, n, dx, point):
                 f.write(",".join(repr(float(v)) for v in point(i, j)) + "\n")
 
 
-def run_sph(a, case):
-    """sph run of a case into WORKDIR/run: (exit status, output folder);
-    exit statuses other than 0 and 3 (blew up) stop the atlas."""
-    out = os.path.join(a.workdir, "run")
-    cmd = [a.sph, "run", case, "--output", out, "--overwrite", "--no-progress", "--threads", "1"]
-    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+def run_sph(a, case, extra=()):
+    """sph run of a case (with extra flags) into WORKDIR/run, from the
+    repository's root (the cases' particle files are relative to it):
+    (exit status, output folder, what sph printed); exit statuses other than
+    0 and 3 (stopped: blew up or leaked) stop the atlas."""
+    out = os.path.abspath(os.path.join(a.workdir, "run"))
+    cmd = [os.path.abspath(a.sph), "run", os.path.abspath(case), "--output", out, "--overwrite", "--no-progress",
+           "--threads", "1", *extra]
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                       cwd=os.path.join(HERE, ".."))
     if r.returncode not in (0, 3):
         raise SystemExit("sph failed:\n" + " ".join(cmd) + "\n" + r.stdout)
-    return r.returncode, out
+    return r.returncode, out, r.stdout
 
 
 def lattice_case(a, name, n, dx, h, c, dt, steps, every, point, kernel, density, integrator, extra=""):
@@ -122,14 +126,14 @@ def energy(out):
         return np.array([float(row[1]) for row in list(csv.reader(f))[1:]])
 
 
-def trial(a, C, work):
+def trial(a, C):
     n, dx, c = 16, 0.01, 10.0
     h = a.hdx * dx
     rng = np.random.default_rng(1)
     v = rng.normal(0, 1e-4 * c, (n, n, 2))
     case = lattice_case(a, "lattice", n, dx, h, c, C * h / c, a.steps, a.steps,
                         lambda i, j: ((i + 0.5) * dx, (j + 0.5) * dx, *v[j, i]), a.kernel, a.density, a.integrator, NO_VISCOSITY)
-    rc, out = run_sph(a, case)
+    rc, out, _ = run_sph(a, case)
     if rc == 3:
         return False, "blew up"
     e = energy(out)
@@ -174,10 +178,10 @@ def bisect(stable, lo, hi, rel=0.005):
 
 
 def mode_timestep(a):
-    ok, why = trial(a, a.lo, a.workdir)
+    ok, why = trial(a, a.lo)
     if not ok:
         raise SystemExit(f"FAILED: unstable already at C = {a.lo} ({why})")
-    threshold, _ = bisect(lambda C: trial(a, C, a.workdir), a.lo, a.hi)
+    threshold, _ = bisect(lambda C: trial(a, C), a.lo, a.hi)
     ref = reference(a.kernel, 2, a.hdx, a.integrator) if a.integrator in ("leap_frog", "symplectic_euler", "rk4") else None
     line = (f"{a.integrator}, {a.kernel}, {a.density} density, h/dx {a.hdx}: largest stable c dt / h = "
             f"{threshold:.3f}")
@@ -232,7 +236,7 @@ def lattice_energy(a, C, steps):
     v = rng.normal(0, 1e-7 * c, (n, n, 2))
     case = lattice_case(a, "lattice", n, dx, h, c, C * h / c, steps, 1,
                         lambda i, j: ((i + 0.5) * dx, (j + 0.5) * dx, *v[j, i]), a.kernel, "continuity", "euler", NO_VISCOSITY)
-    rc, out = run_sph(a, case)
+    rc, out, _ = run_sph(a, case)
     if rc != 0:
         raise SystemExit(f"explicit Euler at C = {C} blew up within {steps} steps: fewer steps")
     return energy(out)
@@ -260,7 +264,7 @@ def paired_fraction(a, kernel, hdx):
     case = lattice_case(a, "pairing_lattice", n, dx, h, c, dt, steps, steps,
                         lambda i, j: ((i + 0.5) * dx + jitter[j, i, 0], (j + 0.5) * dx + jitter[j, i, 1], 0, 0),
                         kernel, "summation", "leap_frog", PAIRING_EXTRA.format(pb=a.pairing_pressure * 1000.0 * c * c))
-    rc, out = run_sph(a, case)
+    rc, out, _ = run_sph(a, case)
     if rc == 3:
         return 1.0, "blew up"
     sys.path.insert(0, HERE)
@@ -308,13 +312,8 @@ def mode_tensile(a):
     import observables
     case = os.path.join(HERE, "..", "cases", "tensile_block.case")
     for eps in a.eps:
-        out = os.path.join(a.workdir, "run")
-        cmd = [a.sph, "run", case, "--output", out, "--overwrite", "--no-progress", "--threads", "1",
-               "--artificial_pressure", repr(eps), "--end_time", repr(a.tensile_time), "--regime_check", "off"]
-        r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                           cwd=os.path.join(HERE, ".."))
-        if r.returncode not in (0, 3):
-            raise SystemExit("sph failed:\n" + " ".join(cmd) + "\n" + r.stdout)
+        _, out, _ = run_sph(a, case, ["--artificial_pressure", repr(eps), "--end_time", repr(a.tensile_time),
+                                      "--regime_check", "off"])
         dx = 0.01
         onset = None
         for snap in observables.Run(out).snapshots():
@@ -332,19 +331,14 @@ def leak_trial(a, boundary, layers, C):
     what happened)."""
     h, c0 = 1.5 * a.leak_dx, 44.0
     dt = C * h / c0
-    out = os.path.join(a.workdir, "run")
-    cmd = [a.sph, "run", os.path.join(HERE, "..", "cases", "dam_break.case"), "--output", out, "--overwrite",
-           "--no-progress", "--threads", "1", "--spacing", repr(a.leak_dx), "--h", repr(h), "--dt", repr(dt),
-           "--end_time", repr(a.leak_time), "--output_interval", repr(a.leak_time), "--boundary", boundary]
+    extra = ["--spacing", repr(a.leak_dx), "--h", repr(h), "--dt", repr(dt), "--end_time", repr(a.leak_time),
+             "--output_interval", repr(a.leak_time), "--boundary", boundary]
     if boundary != "repulsive":
-        cmd += ["--wall_layers", str(layers), "--wall_layers_override"]
-    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    if r.returncode == 0:
+        extra += ["--wall_layers", str(layers), "--wall_layers_override"]
+    rc, _, text = run_sph(a, os.path.join(HERE, "..", "cases", "dam_break.case"), extra)
+    if rc == 0:
         return True, "kept its fluid"
-    if r.returncode == 3:
-        text = r.stdout.lower()
-        return False, "leaked" if "leak" in text else "blew up"
-    raise SystemExit("sph failed:\n" + " ".join(cmd) + "\n" + r.stdout)
+    return False, "leaked" if "leak" in text.lower() else "blew up"
 
 
 def mode_leakage(a):

@@ -94,7 +94,7 @@ class Scene {
     for (std::size_t k = 0; k < order.size(); ++k)
       if (order[k] != k)
         throw std::runtime_error("the snapshot is not in the order sph keeps its particles (written by another program?)");
-    model_.resumed(P_, neighbours_);
+    model_.refreshCspmMatrices(P_, neighbours_);
     return finishStep([](std::size_t) {});
   }
 

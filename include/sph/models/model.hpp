@@ -68,13 +68,13 @@ class Model {
     executedAfterStep_ = runPasses(afterStep_, P, neighbours, ctx);
     // A re-initialised density changes the volumes of the CSPM matrices the
     // next step's density-rate pass reads: refresh them, as a resume does.
-    if (executedAfterStep_ != 0) resumed(P, neighbours);
+    if (executedAfterStep_ != 0 && ctx.densityRateApart) refreshCspmMatrices(P, neighbours);
   }
 
-  // After a resume from a snapshot: the derived fields the density-rate pass
-  // reads before the first evaluation (the CSPM matrices L_i), which a
-  // snapshot does not hold.
-  void resumed(Particles<D>& P, const NeighbourList<D>& neighbours) const {
+  // The CSPM matrices L_i at the current state, for the density-rate pass
+  // that reads them before the step's first evaluation: after a resume (a
+  // snapshot does not hold them) and after a density re-initialisation.
+  void refreshCspmMatrices(Particles<D>& P, const NeighbourList<D>& neighbours) const {
     for (const Pass<D>& pass : passes_)
       if (const auto* c = std::get_if<CspmCorrectionPass<D>>(&pass)) c->run(P, neighbours, StepContext{});
   }
