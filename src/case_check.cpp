@@ -140,6 +140,14 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     out << "  wall layers      " << layers << " (the support needs " << needed << ")\n";
     if (layers < needed) warn("fewer wall layers than the support needs: particles near a wall see a gap and leak");
   }
+  if (c.walls && c.boundary != "reflecting") {
+    if (c.wallGuard)
+      out << "  wall guard       on: no fluid particle crosses a wall surface (the wall forces alone do not hold an "
+             "isolated splash particle: boundaries/wall_guard.hpp)\n";
+    else
+      warn("wall_guard = false: the wall particles alone hold the fluid; an isolated splash particle at p <= 0 can "
+           "pass them and stop the run (measured: the obstacle dam break at 0.73 s)");
+  }
   if (dx > 0 && c.model == "wcsph" && c.kernel == "cubic_spline" && h / dx >= 1.3)
     warn("cubic spline at h/dx " + fmt(h / dx) + ": it pairs particles from h/dx 1.3 (measured: 39% paired at 1.3, " +
          "52-70% from 1.5); wendland_c2 stays clean to 2.0");

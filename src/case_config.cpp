@@ -159,6 +159,8 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
                             "colour_ellipse_radii"})
       note(key, "surface_tension is none; it applies to surface_tension morris or muller");
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
+  if (!c.walls || c.boundary == "reflecting")
+    note("wall_guard", "the walls are not particles; it applies to boundary dummy, dynamic or repulsive");
   if (!c.gravity.empty()) note("g", "gravity gives the body acceleration");
   if (c.starMass == 0)
     for (const char* key : {"star_radius", "star_particles", "star_center", "star_velocity", "seed"})

@@ -185,6 +185,10 @@ const std::vector<KeySpec>& caseKeys() {
        "Allow fewer wall layers than the support needs (the fluid then leaks; for tests of leakage)", {}, nullptr,
        nullptr},
       {"lid", G::kPhysics, &C::lid, "", "Wall particles on the top of the box too (a closed tank)", {}, nullptr, nullptr},
+      {"wall_guard", G::kPhysics, &C::wallGuard, "",
+       "Wall particles (dummy, dynamic, repulsive): a fluid particle that crosses a wall surface is put back onto it "
+       "and loses its velocity into the wall (counted in the summary; --no-wall_guard: the bare boundary, which may leak)",
+       {}, nullptr, nullptr},
       {"lid_velocity", G::kPhysics, &C::lidVelocity, "m/s",
        "The lid (lid = true, boundary dummy) slides with this constant velocity, D values along its plane (a "
        "Couette plate, a lid-driven cavity); its particles stay in place and show the fluid that velocity",

@@ -443,6 +443,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   auto saveRecord = [&] {
     record.simulatedTime = scene.time();
     record.step = scene.stepIndex();
+    record.wallGuardActions = previous.wallGuardActions + scene.wallGuardActions();
     // Threads over the whole run: a resume adds to what the run used before.
     record.threadsUsed = previous.threadsUsed;
     record.threadSeconds = previous.threadSeconds;
@@ -644,6 +645,19 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
           << " particle-evaluations fell back to the uncorrected gradient ("
           << shortestDecimal(cc.cspmParticles ? 100.0 * static_cast<double>(cc.cspmFallbacks) / static_cast<double>(cc.cspmParticles) : 0.0)
           << "%)\n";
+    if (c.walls && c.boundary != "reflecting" && c.wallGuard) {
+      const long taken = scene.stepIndex() - firstStep;
+      const double perStep = taken > 0 ? static_cast<double>(scene.wallGuardActions()) / static_cast<double>(taken) : 0;
+      out << "  wall guard       ";
+      if (record.wallGuardActions == 0)
+        out << "0 times needed (the wall particles held every fluid particle)\n";
+      else {
+        char rate[32];
+        std::snprintf(rate, sizeof rate, "%.3g", perStep);
+        out << record.wallGuardActions << " times it put a fluid particle back inside the walls (" << rate
+            << " per step, of " << scene.particles().fluidCount() << " fluid particles)\n";
+      }
+    }
     if (c.densityReinit != "none") {
       out << "  density reinit   " << c.densityReinit << " every " << c.densityReinitEvery << " steps: " << cc.reinitSteps
           << " times, " << cc.reinitParticles << " particle re-initialisations";

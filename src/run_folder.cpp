@@ -62,6 +62,7 @@ void writeRunRecord(const std::filesystem::path& dir, const RunRecord& r) {
   j["summary"] = {{"particles", r.particles},
                   {"fluid_particles", r.fluidParticles},
                   {"wall_particles", r.wallParticles},
+                  {"wall_guard_actions", r.wallGuardActions},
                   {"start_time_s", r.startTime},
                   {"simulated_time_s", r.simulatedTime},
                   {"steps", r.step},
@@ -111,6 +112,7 @@ RunRecord readRunRecord(const std::filesystem::path& dir) {
     r.particles = s.at("particles").get<std::size_t>();
     r.fluidParticles = s.at("fluid_particles").get<std::size_t>();
     r.wallParticles = s.at("wall_particles").get<std::size_t>();
+    r.wallGuardActions = s.value("wall_guard_actions", 0L);  // (absent in runs written before the guard)
     r.startTime = s.at("start_time_s").get<double>();
     r.simulatedTime = s.at("simulated_time_s").get<double>();
     r.step = s.at("steps").get<long>();

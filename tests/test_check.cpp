@@ -65,4 +65,15 @@ BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_it) {
   BOOST_TEST(m.output.find("no_such.case") != std::string::npos, m.output);
 }
 
+// The wall guard is stated; without it, sph check warns before the run
+// that a splash particle may pass the wall particles.
+BOOST_AUTO_TEST_CASE(the_wall_guard_is_stated_and_its_absence_warned_about) {
+  const test::Result on = test::runSph({"check", shipped("dam_break_mm.case")});
+  BOOST_TEST(on.output.find("wall guard       on") != std::string::npos, on.output);
+  const test::Result off = test::runSph({"check", shipped("dam_break_mm.case"), "--no-wall_guard"});
+  BOOST_TEST(off.exitCode == 0);
+  BOOST_TEST(off.output.find("warning: wall_guard = false") != std::string::npos, off.output);
+  BOOST_TEST(off.output.find("1 warning") != std::string::npos);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

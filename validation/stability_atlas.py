@@ -332,7 +332,8 @@ def leak_trial(a, boundary, layers, C):
     h, c0 = 1.5 * a.leak_dx, 44.0
     dt = C * h / c0
     extra = ["--spacing", repr(a.leak_dx), "--h", repr(h), "--dt", repr(dt), "--end_time", repr(a.leak_time),
-             "--output_interval", repr(a.leak_time), "--boundary", boundary]
+             "--output_interval", repr(a.leak_time), "--boundary", boundary,
+             "--no-wall_guard"]  # the bare boundary: the guard would hold every particle
     if boundary != "repulsive":
         extra += ["--wall_layers", str(layers), "--wall_layers_override"]
     rc, _, text = run_sph(a, os.path.join(HERE, "..", "cases", "dam_break.case"), extra)

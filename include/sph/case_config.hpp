@@ -46,6 +46,7 @@ struct CaseConfig {
   long wallLayers = 0;                  // layers of wall particles (0: as many as the support needs)
   bool wallLayersOverride = false;      // allow fewer layers than the support needs
   bool lid = false;                     // wall particles on the top of the box too
+  bool wallGuard = true;                // no fluid particle crosses a wall surface (boundaries/wall_guard.hpp)
   std::vector<Real> lidVelocity;        // the lid slides with this velocity (D values, tangential)
   std::string wallSlip = "no_slip";     // no_slip | free_slip
   std::vector<Real> obstacleMin, obstacleMax;  // boxes of wall particles inside the domain, D values each

@@ -83,6 +83,24 @@ Model<D> makeModel(const CaseConfig& c, std::optional<SinusoidalWallMotion<D>> w
   return makeWcsph<D>(spec);
 }
 
+// The guard at the wall particles' surfaces: the faces of the domain box
+// that have walls (not periodic, not an open top) and every obstacle box.
+template <int D>
+WallGuard<D> makeWallGuard(const CaseConfig& c) {
+  WallGuard<D> guard;
+  const unsigned periodic = periodicAxes(c);
+  for (int d = 0; d < D; ++d) {
+    if ((periodic >> d) & 1u) continue;
+    guard.lo[d] = c.domainMin[static_cast<std::size_t>(d)];
+    if (d < D - 1 || c.lid) guard.hi[d] = c.domainMax[static_cast<std::size_t>(d)];
+  }
+  for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D)
+    guard.obstacles.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
+                               toVec<D>({c.obstacleMax.begin() + k, c.obstacleMax.begin() + k + D})});
+  guard.paddle = static_cast<int>(c.paddle) - 1;
+  return guard;
+}
+
 template <int D>
 Integrator<D> makeIntegrator(const std::string& name) {
   return methodRow(integratorMethods<D>(), "integrator", name).make(CaseConfig{});
@@ -124,6 +142,7 @@ Scene<D> makeScene(const CaseConfig& c, InitialState<D> init,
                  startTime, makeIntegrator<D>(c.integrator));
   if (periodic.any()) scene.setPeriodic(periodic);
   if (motion) scene.setWallMotion(*motion);
+  if (c.walls && c.boundary != "reflecting" && c.wallGuard) scene.setWallGuard(makeWallGuard<D>(c));
   if (c.shifting == "fickian")
     scene.setShifting(ParticleShifting<D>(makeKernel<D>(c), c.shiftingCoefficient, c.spacing, c.rho0));
   return scene;

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "sph/boundaries/damped_reflecting_walls.hpp"
+#include "sph/boundaries/wall_guard.hpp"
 #include "sph/hash_grid.hpp"
 #include "sph/integrators/integrators.hpp"
 #include "sph/mass_scaling.hpp"
@@ -70,6 +71,10 @@ class Scene {
   void setShifting(ParticleShifting<D> shifting) { shifting_.emplace(std::move(shifting)); }
   // A paddle's prescribed motion, moved at the start of every step (wall_motion.hpp).
   void setWallMotion(const SinusoidalWallMotion<D>& motion) { wallMotion_ = motion; }
+  // The no-penetration guard at the wall particles' surfaces (boundaries/wall_guard.hpp).
+  void setWallGuard(WallGuard<D> guard) { guard_.emplace(std::move(guard)); }
+  // How often the guard put a fluid particle back (position updates it changed).
+  long wallGuardActions() const { return guardActions_; }
 
   // Sort, optionally scale the masses to rho0, and evaluate the model at the
   // initial state. Returns a failure if the initial state is not finite.
@@ -104,8 +109,17 @@ class Scene {
     const TimeStepChoice choice = timeStep_.next(extremes_, model_, time_, landOn);
     lastStep_ = choice;
     context_ = StepContext{step_ + 1, time_ + choice.dt, choice.dt};
+    if (guard_ && wallMotion_ && guard_->paddle >= 0) {
+      guard_->paddleOffset = wallMotion_->displacement(time_ + choice.dt);  // the case places it at t = 0, where sin = 0
+      guard_->paddleVelocity = wallMotion_->velocity(time_ + choice.dt);
+    }
+    long guarded = 0;
     auto constrain = [&](Particles<D>& P, std::size_t i) {
       if (walls_) (*walls_)(P, i);
+      if (guard_ && (*guard_)(P, i)) {
+#pragma omp atomic
+        ++guarded;
+      }
     };
     std::optional<StateFailure> failure;
     if (shifting_) shifting_->apply(P_, neighbours_, choice.dt);
@@ -118,6 +132,7 @@ class Scene {
           failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
         },
         integrator_);
+    guardActions_ += guarded;
     if (!failure) model_.afterStep(P_, neighbours_, context_);
     ++step_;
     // A step cut to land on end_time or an output time ends exactly there
@@ -226,6 +241,8 @@ class Scene {
   PeriodicBox<D> periodic_;
   std::optional<ParticleShifting<D>> shifting_;
   std::optional<SinusoidalWallMotion<D>> wallMotion_;
+  std::optional<WallGuard<D>> guard_;
+  long guardActions_ = 0;
   HashGrid<D> grid_;
   NeighbourList<D> neighbours_;
   Real startTime_;

@@ -58,6 +58,7 @@ struct RunRecord {
   std::string dtLimitedBy;             // the criterion that set dt most often
   std::map<std::string, long> dtCriteria;  // criterion -> number of steps it set
   long snapshots = 0;
+  long wallGuardActions = 0;           // fluid particles the wall guard put back (boundaries/wall_guard.hpp)
   std::string lastSnapshot;
   std::vector<std::string> files;      // the files the run wrote (relative to its folder)
 
