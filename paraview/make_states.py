@@ -43,6 +43,7 @@ STATES = {
     "three_particles": ("three_particles", "velocity", "Turbo", False),
     "four_particles": ("four_particles", "velocity", "Turbo", False),
     "dam_break_3d": ("dam_break_3d", "pressure", "Turbo", True),
+    "spheric2_dam_break_box": ("spheric2_dam_break_box", "pressure", "Turbo", True),
 }
 # The view size the states are made for: about the GUI's render view on a
 # 1600x1000 screen (the GUI resizes the view; the camera keeps the domain's

@@ -176,7 +176,9 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
   if (c.initialFlow == "none") note("flow_speed", "initial_flow is none; it applies to initial_flow taylor_green");
   if (c.probePoints.empty() && c.heightProbes.empty() && !c.frontProbe)
     note("probe_interval", "there are no probes (probe_points, height_probes, front_probe)");
-  if (c.probePoints.empty()) note("probe_interpolation", "there are no point probes (probe_points)");
+  if (c.probePoints.empty())
+    for (const char* key : {"probe_interpolation", "probe_radius", "probe_window"})
+      note(key, "there are no point probes (probe_points)");
   if (c.outputInterval > 0) note("output_every", "output_interval is used");
   else note("output_interval", "output_interval is off; output_every is used");
   return unused;

@@ -310,6 +310,14 @@ const std::vector<KeySpec>& caseKeys() {
       {"probe_interval", G::kOutput, &C::probeInterval, "s",
        "Probes are sampled every this many seconds of simulated time (0: every step)", within(0, 1e12), "0: every step",
        nullptr},
+      {"probe_radius", G::kOutput, &C::probeRadius, "m",
+       "Point probes as pressure sensors of this radius: the pressure averaged over a disc (a segment in 2D) on "
+       "the wall face nearest to each point (sph/probes.hpp)",
+       within(0, 1e9), "0: the point", nullptr},
+      {"probe_window", G::kOutput, &C::probeWindow, "s",
+       "A column per point probe with its pressure's moving average over this many seconds of samples (a "
+       "sensor's response; lags by half the window)",
+       within(0, 1e9), "0: none", nullptr},
       {"progress", G::kOutput, &C::progress, "",
        "Progress: a live line on a terminal, a line every few seconds otherwise (--no-progress: none)", {},
        nullptr, nullptr},

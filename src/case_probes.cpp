@@ -33,6 +33,9 @@ void validateProbes(const CaseConfig& c) {
       if (!seen.insert(name).second) throw CaseError("probe_names: \"" + name + "\" is given twice");
     }
   }
+  if (c.probeWindow > 0 && c.probeInterval > c.probeWindow)
+    throw CaseError("probe_window = " + std::to_string(c.probeWindow) + " s is shorter than probe_interval = " +
+                    std::to_string(c.probeInterval) + " s: the moving average needs several samples");
   if ((!c.heightProbes.empty() || c.frontProbe) && !(c.spacing > 0))
     throw CaseError("height_probes and front_probe need the lattice spacing: set spacing > 0");
 }

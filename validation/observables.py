@@ -377,3 +377,143 @@ def wave_paddle_heights(run, gauge=0, window=(2.0, 4.5)):
     return {"gauge": head[1 + gauge], "kh": float(kh), "wavelength": float(2 * np.pi / k),
             "H_theory": float(ratio * 2 * A), "H": H, "periods": len(heights),
             "H_each": heights, "error": float(H / (ratio * 2 * A) - 1)}
+
+
+# ---- SPHERIC Test 2 (MARIN dam break with a box) ----
+
+def csv_columns(path):
+    """A CSV with a header line as {column name: array}."""
+    with open(path) as f:
+        names = f.readline().rstrip("\n").split(",")
+    data = np.genfromtxt(path, delimiter=",", skip_header=1, ndmin=2)
+    return {n: data[:, k] for k, n in enumerate(names)}
+
+
+def spheric2_reference():
+    """tests/reference/spheric2_kleefsman2005_figures.csv as a list of dicts."""
+    rows = []
+    with open(os.path.join(REFERENCE, "spheric2_kleefsman2005_figures.csv")) as f:
+        lines = [l.strip() for l in f if l.strip() and not l.startswith("#")]
+    names = lines[0].split(",")
+    for line in lines[1:]:
+        cells = line.split(",")
+        row = {}
+        for n, c in zip(names, cells):
+            try:
+                row[n] = float(c) if c else None
+            except ValueError:
+                row[n] = c
+        rows.append(row)
+    return rows
+
+
+def first_time_above(t, y, level, after=0.0):
+    """The first time t >= after at which y > level (linear between samples), or nan."""
+    y = np.nan_to_num(y, nan=0.0)
+    k = np.where((y > level) & (t >= after))[0]
+    if len(k) == 0:
+        return float("nan")
+    k = k[0]
+    if k == 0 or y[k - 1] > level:
+        return float(t[k])
+    return float(t[k - 1] + (level - y[k - 1]) / (y[k] - y[k - 1]) * (t[k] - t[k - 1]))
+
+
+def window_mean(t, y, t0, t1):
+    """Time average of a sampled series over [t0, t1] (trapezoid; nan reads 0: dry), nan when the
+    run does not reach t1."""
+    if t[-1] < t1 - 1e-9:
+        return float("nan")
+    m = (t >= t0) & (t <= t1)
+    y = np.nan_to_num(y[m], nan=0.0)
+    return float(np.trapz(y, t[m]) / (t[m][-1] - t[m][0]))
+
+
+def moving_average(t, y, window):
+    """Trailing moving average over `window` seconds of a sampled series (as probe_window)."""
+    y = np.nan_to_num(y, nan=0.0)
+    out = np.empty_like(y)
+    j = 0
+    c = np.concatenate([[0.0], np.cumsum(y)])
+    for i in range(len(t)):
+        while t[j] <= t[i] - window * (1 - 1e-9):
+            j += 1
+        out[i] = (c[i + 1] - c[j]) / (i + 1 - j)
+    return out
+
+
+def spheric2_observables(run):
+    """The run's figures next to SPHERIC Test 2's: arrival of 1 cm of water at
+    H1-H3, maximum heights, P1's rise above 1 kPa, its first-impact peak (the
+    sensor's raw reading and its moving average, probe_window), P1's mean over
+    0.45-1.0 s and 1-2 s, and when the top sensors P5-P8 are loaded."""
+    heights = csv_columns(os.path.join(run.folder, "heights.csv"))
+    probes = csv_columns(os.path.join(run.folder, "probes.csv"))
+    th = heights["time [s]"]
+    tp = probes["time [s]"]
+    gauge_cols = [n for n in heights if n.startswith("height at")]
+    gauges = dict(zip(["H1", "H2", "H3", "H4"], gauge_cols))
+    unit = " [Pa]"
+    window = run.case.get("probe_window") or 0.0
+
+    def raw(name):
+        return probes[name + " pressure" + unit]
+
+    def filt(name):
+        col = name + " pressure filtered" + unit
+        return probes[col] if col in probes else moving_average(tp, raw(name), 0.005)
+
+    out = {"end_time": float(max(th[-1], tp[-1])), "window": window, "rows": []}
+    for ref in spheric2_reference():
+        q, g = ref["quantity"], ref["gauge"]
+        sim = float("nan")
+        sim_time = None
+        if q == "arrival_1cm":
+            sim = first_time_above(th, heights[gauges[g]], 0.01)
+        elif q == "max_height":
+            if th[-1] >= ref["time [s]"] + 0.2:
+                y = np.nan_to_num(heights[gauges[g]])
+                m = th >= 1.0  # after the first passage of the surge (before it, the splash)
+                k = np.argmax(np.where(m, y, -1))
+                sim, sim_time = float(y[k]), float(th[k])
+        elif q == "rise_above_1kPa":
+            sim = first_time_above(tp, raw(g), 1000.0)
+            out["rise_filtered"] = first_time_above(tp, filt(g), 1000.0)
+        elif q == "first_impact_peak":
+            m = (tp >= 0.3) & (tp <= 0.6)
+            if m.any():
+                r, f = np.nan_to_num(raw(g)[m]), filt(g)[m]
+                sim, sim_time = float(r.max()), float(tp[m][np.argmax(r)])
+                out["peak_filtered"] = float(f.max())
+                out["peak_filtered_time"] = float(tp[m][np.argmax(f)])
+                for w in (0.002, 0.005, 0.01, 0.02):
+                    out[f"peak_ma_{w*1e3:g}ms"] = float(moving_average(tp, raw(g), w)[m].max())
+        elif q == "mean_pressure":
+            sim = window_mean(tp, raw(g), ref["t_from [s]"], ref["t_to [s]"])
+        elif q == "top_loaded_from":
+            if tp[-1] >= 1.8:
+                top = np.max([filt(n) for n in ("P5", "P6", "P7", "P8")], axis=0)
+                sim = first_time_above(tp, top, 500.0, after=1.0)
+        elif q == "top_peak":
+            if tp[-1] >= 2.0:
+                m = tp >= 1.0
+                top = np.max([filt(n) for n in ("P5", "P6", "P7", "P8")], axis=0)
+                k = np.argmax(np.where(m, top, -1))
+                sim, sim_time = float(top[k]), float(tp[k])
+        out["rows"].append({"quantity": q, "gauge": g, "ref": ref["value"], "ref_time": ref["time [s]"],
+                            "window": (ref["t_from [s]"], ref["t_to [s]"]), "unit": ref["unit"], "sim": sim,
+                            "sim_time": sim_time})
+    # The start-up offset, as the gate-release offset of dam-break
+    # validations: the delay of the first gauge's arrival (H3) against the
+    # experiment's; the later events measured from it.
+    rows = {(r["quantity"], r["gauge"], r["window"][0]): r for r in out["rows"]}
+    shift = rows[("arrival_1cm", "H3", None)]["sim"] - rows[("arrival_1cm", "H3", None)]["ref"]
+    out["shift"] = shift
+    out["arrival_H2_shifted"] = rows[("arrival_1cm", "H2", None)]["sim"] - shift
+    out["arrival_H1_shifted"] = rows[("arrival_1cm", "H1", None)]["sim"] - shift
+    out["rise_P1_shifted"] = rows[("rise_above_1kPa", "P1", None)]["sim"] - shift
+    t1 = min(1.0 + shift, float(tp[-1])) if shift == shift else float("nan")
+    out["level_window_shifted"] = (0.45 + shift, t1)
+    out["level_P1_shifted"] = (window_mean(tp, raw("P1"), 0.45 + shift, t1)
+                               if shift == shift and t1 > 0.5 + shift else float("nan"))
+    return out

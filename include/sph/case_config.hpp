@@ -111,6 +111,8 @@ struct CaseConfig {
   bool frontProbe = false;         // the surge front's x
   std::string probeInterpolation = "shepard";  // shepard | plain
   Real probeInterval = 0;          // seconds of simulated time between samples; 0: every step
+  Real probeRadius = 0;            // > 0: point probes are sensors, pressure averaged over a disc on the wall
+  Real probeWindow = 0;            // > 0: a moving average of each probe's pressure over this many seconds
 
   // regime check (sph/regime_check.hpp): stop | warn | off
   std::string regimeCheck = "stop";

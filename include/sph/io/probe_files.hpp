@@ -1,5 +1,6 @@
 // The probe files of a run (sph/probes.hpp says what each probe measures):
 //   probes.csv   time, then per point probe: pressure, density, velocity
+//                (and with probe_window the pressure's moving average)
 //   heights.csv  time, then the water height at each height gauge
 //   front.csv    time, the surge front's x
 // Each has a header line naming every column with its unit (2D quantities
@@ -11,7 +12,11 @@
 #include "sph/case_config.hpp"
 #include "sph/probes.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <utility>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -36,7 +41,7 @@ class ProbeFiles {
  public:
   ProbeFiles(const CaseConfig& c, const Kernel<D>& kernel)
       : kernel_(kernel), dx_(c.spacing), interval_(c.probeInterval), heights_(c.heightProbes), front_(c.frontProbe),
-        shepard_(c.probeInterpolation != "plain") {
+        shepard_(c.probeInterpolation != "plain"), radius_(c.probeRadius), window_(c.probeWindow) {
     if (c.domainMin.size() == D && c.domainMax.size() == D) {
       for (int d = 0; d < D; ++d) {
         box_.lo[d] = c.domainMin[static_cast<std::size_t>(d)];
@@ -50,6 +55,29 @@ class ProbeFiles {
       points_.push_back(x);
     }
     names_ = probeNames(c, points_.size());
+    // Sensors (probe_radius > 0): each a disc on the wall face nearest to
+    // its point, among the domain box's faces and the obstacles'.
+    std::vector<std::pair<Vec<D>, Vec<D>>> boxes;
+    unsigned skip = 0;
+    if (c.domainMin.size() == D && c.domainMax.size() == D) {
+      Vec<D> lo, hi;
+      for (int d = 0; d < D; ++d)
+        lo[d] = c.domainMin[static_cast<std::size_t>(d)], hi[d] = c.domainMax[static_cast<std::size_t>(d)];
+      boxes.push_back({lo, hi});
+      skip = periodicAxes(c);
+    }
+    for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D) {
+      Vec<D> lo, hi;
+      for (int d = 0; d < D; ++d)
+        lo[d] = c.obstacleMin[k + static_cast<std::size_t>(d)], hi[d] = c.obstacleMax[k + static_cast<std::size_t>(d)];
+      boxes.push_back({lo, hi});
+    }
+    const Real h = std::visit([](const auto& W) { return W.support() / 2; }, kernel_);
+    for (const auto& x : points_) {
+      normals_.push_back(boxes.empty() ? D - 1 : nearestFaceAxis<D>(x, boxes, skip));
+      discs_.push_back(sensorDiscPoints<D>(x, normals_.back(), radius_, h));
+    }
+    history_.resize(points_.size());
     const char* pressure = D == 2 ? "N/m" : "Pa";
     const char* density = D == 2 ? "kg/m^2" : "kg/m^3";
     const char* axes = "xyz";
@@ -58,6 +86,7 @@ class ProbeFiles {
       for (const auto& name : names_) {
         pointText_ += "," + name + " pressure [" + pressure + "]," + name + " density [" + density + "]";
         for (int d = 0; d < D; ++d) pointText_ += "," + name + " v" + axes[d] + " [m/s]";
+        if (window_ > 0) pointText_ += "," + name + " pressure filtered [" + pressure + "]";
       }
       pointText_ += "\n";
     }
@@ -82,10 +111,11 @@ class ProbeFiles {
     if (interval_ > 0) next_ = (std::floor(t / interval_ * (1 + 1e-12) + 1e-9) + 1) * interval_;
     if (!points_.empty()) {
       pointText_ += timeText;
-      for (const auto& x : points_) {
-        const ProbeValues<D> v = interpolateAt(P, kernel_, x, kDryWeight, box_, shepard_);
+      for (std::size_t k = 0; k < points_.size(); ++k) {
+        const ProbeValues<D> v = sensorAt(P, kernel_, points_[k], discs_[k], radius_, kDryWeight, box_, shepard_);
         pointText_ += "," + value(v.wet, v.pressure) + "," + value(v.wet, v.density);
         for (int d = 0; d < D; ++d) pointText_ += "," + value(v.wet, v.velocity[d]);
+        if (window_ > 0) pointText_ += "," + number(filtered(k, t, v.wet ? v.pressure : 0));
       }
       pointText_ += "\n";
     }
@@ -122,9 +152,42 @@ class ProbeFiles {
       if (!kept.empty()) *text = kept;
     }
     if (interval_ > 0) next_ = (std::floor(t / interval_ * (1 + 1e-12) + 1e-9) + 1) * interval_;
+    // The moving average's samples within the window, from the kept rows.
+    if (window_ > 0 && !points_.empty()) {
+      std::stringstream rows(pointText_);
+      std::string line;
+      std::getline(rows, line);  // header
+      const std::size_t group = 2 + D + 1;
+      while (std::getline(rows, line)) {
+        std::vector<Real> cells;
+        std::stringstream in(line);
+        for (std::string cell; std::getline(in, cell, ',');) cells.push_back(std::strtod(cell.c_str(), nullptr));
+        if (cells.size() != 1 + group * points_.size()) continue;
+        for (std::size_t k = 0; k < points_.size(); ++k) {
+          const Real p = cells[1 + k * group];
+          remember(k, cells[0], std::isfinite(p) ? p : 0);
+        }
+      }
+    }
   }
 
+  // The sensors' normal axes (probe_radius: the disc lies across it).
+  const std::vector<int>& sensorNormals() const { return normals_; }
+
  private:
+  // probe_window: the mean of probe k's samples in (t - window, t].
+  void remember(std::size_t k, Real t, Real p) {
+    auto& h = history_[k];
+    h.emplace_back(t, p);
+    while (!h.empty() && h.front().first <= t - window_ * (1 - 1e-9)) h.pop_front();
+  }
+  Real filtered(std::size_t k, Real t, Real p) {
+    remember(k, t, p);
+    Real sum = 0;
+    for (const auto& s : history_[k]) sum += s.second;
+    return sum / static_cast<Real>(history_[k].size());
+  }
+
   static constexpr Real kDryWeight = 0.1;  // of a full support's sum_j V_j W = 1
   static std::string number(Real x) {
     char s[32];
@@ -141,6 +204,10 @@ class ProbeFiles {
   std::vector<Real> heights_;
   bool front_;
   bool shepard_;  // probe_interpolation: shepard (default) or plain
+  Real radius_, window_;  // probe_radius, probe_window
+  std::vector<int> normals_;
+  std::vector<std::vector<Vec<D>>> discs_;
+  std::vector<std::deque<std::pair<Real, Real>>> history_;
   Real next_ = 0;
   std::string pointText_, heightText_, frontText_;
 };
