@@ -17,7 +17,9 @@
 // periodic axes), not 2^3 times more. With the CSPM gradient correction
 // (cspm_correction.hpp; its L_i computed by the pass before this one) the
 // pressure term is CspmPressure and the pair loop corrects the gradient of
-// the pressure and continuity terms: a second instantiation, chosen once
+// the pressure term (the continuity term keeps grad W, so that the density
+// follows the particles' packing: continuity_density.hpp): a second
+// instantiation, chosen once
 // per evaluation; off, the loop is the one it was.
 #pragma once
 
@@ -144,7 +146,8 @@ unsigned WcsphForcePass<D>::densityRate(Particles<D>& P, const NeighbourList<D>&
                              std::make_tuple(ContinuityDensity{wallDensityRates}), DensityRateEpilogue<D>{},
                              DensityRateEpilogue<D>{}, PairLoopParts{wallPairs, wallDensityRates}, correct);
         };
-        if (cspm) return loop(CspmCorrection<D>{P.cspmL.data()});
+        // The continuity sum takes the plain grad W, CSPM or not
+        // (continuity_density.hpp): no correction to form here.
         return loop(NoGradientCorrection{});
       },
       kernel);
