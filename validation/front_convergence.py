@@ -23,6 +23,9 @@ the water ahead holds (0.01 m)^2 per unit depth (one particle of the dx =
 the largest gap from the furthest particle to the next (a lone particle
 ahead would show a gap over 1.5 dx).
 
+--detect volume takes the volume-ahead front (from the .vtp) for the table's
+error columns, the differences, the order and --check.
+
 --check fails (prints FAILED, exit 1) unless the successive differences
 shrink (mean|Z2 - Z3| < R mean|Z1 - Z2|, R = --shrink, default 0.9) and the
 finest run's mean |error| with the offset is within --limit (default 0.05).
@@ -57,6 +60,8 @@ def main():
     ap.add_argument("--limit", type=float, default=0.05)
     ap.add_argument("--shrink", type=float, default=0.9)
     ap.add_argument("--no-vtp", action="store_true", help="skip the detection check (the .vtp reading)")
+    ap.add_argument("--detect", choices=["probe", "volume"], default="probe",
+                    help="the front of the convergence and --check: the probe's (front.csv) or the volume-ahead one (.vtp)")
     a = ap.parse_args()
     folders = study_runs(a.study) if a.study else a.runs
     if len(folders) < 2:
@@ -76,6 +81,8 @@ def main():
     for r in runs:
         c = r.case
         T, Z = observables.dam_break_front(r, "probe")
+        if a.detect == "volume":
+            T, Z, _ = observables.front_volume_ahead(r, AREA)
         if T.max() < T_RANGE[1] - 1e-6:
             print(f"FAILED: {r.folder} ends at T = {T.max():.2f} < {T_RANGE[1]}")
             ok = False
