@@ -86,7 +86,7 @@ struct WcsphForcePass {
   bool wallPairs = true;              // walls enter the SPH sums (not for repulsive walls)
   bool wallDensityRates = false;      // dynamic walls: d rho/dt of the wall particles
   bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
-  bool cspm = false;                  // CSPM-corrected pressure and continuity (needs cspmL)
+  bool cspm = false;                  // CSPM-corrected pressure gradient (needs cspmL)
   Real artificialPressure = 0;        // Monaghan 2000 epsilon (0: off)
   int artificialPressureN = 4;        // its exponent n
   Real spacing = 0;                   // dx of f_ij = W(r)/W(dx)
