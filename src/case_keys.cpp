@@ -272,7 +272,7 @@ const std::vector<KeySpec>& caseKeys() {
        count(1, 1e9), nullptr, nullptr},
       {"gradient_correction", G::kNumerics, &C::gradientCorrection, "",
        "Kernel gradient correction (model wcsph): none, or cspm (L_i grad W, exact for linear fields, in the "
-       "pressure gradient and the continuity velocity divergence)",
+       "pressure gradient; the continuity sum keeps grad W)",
        {}, nullptr, gradientCorrectionNames},
       {"regime_check", G::kNumerics, &C::regimeCheck, "",
        "Every 10 steps: Mach number above 1, the fluid breaking up (over half its particles alone), particles "

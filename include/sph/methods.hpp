@@ -158,7 +158,7 @@ inline const std::vector<Method<DensityReinit>>& densityReinitMethods() {
 inline const std::vector<Method<bool>>& gradientCorrectionMethods() {
   static const std::vector<Method<bool>> m = {
       {"none", "grad W as it is", {}, [](const CaseConfig&) { return false; }},
-      {"cspm", "L_i grad W with L_i = [sum V_k (x_k - x_i) (x) grad W_ik]^-1 in pressure and continuity "
+      {"cspm", "L_i grad W with L_i = [sum V_k (x_k - x_i) (x) grad W_ik]^-1 in the pressure gradient "
                "(Chen, Beraun & Carney 1999; Bonet & Lok 1999)",
        {}, [](const CaseConfig&) { return true; }},
   };

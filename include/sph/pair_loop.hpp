@@ -55,7 +55,7 @@ struct Pair {
   Real q;        // r / support
   Real dWdr_r;   // (dW/dr) / r, so that grad_i W = dWdr_r rij (0 without a kernel)
   Vec<D> gradW;  // grad_i W(r_ij)
-  Vec<D> gradWC; // corrected grad_i W (the pressure and continuity terms); = gradW without a correction
+  Vec<D> gradWC; // corrected grad_i W (the pressure term); = gradW without a correction
 };
 
 // No gradient correction: gradWC = gradW.

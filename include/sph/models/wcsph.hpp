@@ -56,7 +56,7 @@ struct WcsphSpec {
   bool clampNegative = false;  // negative_pressure = clamp
   DensityReinit reinit = DensityReinit::kNone;
   long reinitEvery = 20;       // steps between re-initialisations
-  bool cspm = false;           // CSPM gradient correction in pressure and continuity
+  bool cspm = false;           // CSPM gradient correction in the pressure gradient
   Real artificialPressure = 0; // Monaghan 2000 epsilon (0: off); needs spacing
   int artificialPressureN = 4;
   Real surfaceTension = 0;     // sigma of the colour-field force (0: off)

@@ -17,7 +17,9 @@
 // periodic axes), not 2^3 times more. With the CSPM gradient correction
 // (cspm_correction.hpp; its L_i computed by the pass before this one) the
 // pressure term is CspmPressure and the pair loop corrects the gradient of
-// the pressure and continuity terms: a second instantiation, chosen once
+// the pressure term (the continuity term keeps grad W, so that the density
+// follows the particles' packing: continuity_density.hpp): a second
+// instantiation, chosen once
 // per evaluation; off, the loop is the one it was.
 #pragma once
 
@@ -84,7 +86,7 @@ struct WcsphForcePass {
   bool wallPairs = true;              // walls enter the SPH sums (not for repulsive walls)
   bool wallDensityRates = false;      // dynamic walls: d rho/dt of the wall particles
   bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
-  bool cspm = false;                  // CSPM-corrected pressure and continuity (needs cspmL)
+  bool cspm = false;                  // CSPM-corrected pressure gradient (needs cspmL)
   Real artificialPressure = 0;        // Monaghan 2000 epsilon (0: off)
   int artificialPressureN = 4;        // its exponent n
   Real spacing = 0;                   // dx of f_ij = W(r)/W(dx)
@@ -144,7 +146,8 @@ unsigned WcsphForcePass<D>::densityRate(Particles<D>& P, const NeighbourList<D>&
                              std::make_tuple(ContinuityDensity{wallDensityRates}), DensityRateEpilogue<D>{},
                              DensityRateEpilogue<D>{}, PairLoopParts{wallPairs, wallDensityRates}, correct);
         };
-        if (cspm) return loop(CspmCorrection<D>{P.cspmL.data()});
+        // The continuity sum takes the plain grad W, CSPM or not
+        // (continuity_density.hpp): no correction to form here.
         return loop(NoGradientCorrection{});
       },
       kernel);
