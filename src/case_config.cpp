@@ -157,7 +157,7 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
   if (seed || c.surfaceTension == "none")
     for (const char* key : {"sigma", "surface_threshold", "colour_box_min", "colour_box_max", "colour_ellipse_center",
                             "colour_ellipse_radii"})
-      note(key, "surface_tension is none; it applies to surface_tension morris or muller");
+      note(key, "surface_tension is none; it applies to surface_tension morris, muller or corrected");
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
   if (!c.walls || c.boundary == "reflecting")
     note("wall_guard", "the walls are not particles; it applies to boundary dummy, dynamic or repulsive");

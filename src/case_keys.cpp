@@ -35,7 +35,7 @@ std::vector<std::string> diffusionNames() { return {"fourtakas", "molteni"}; }
 std::vector<std::string> negativePressureNames() { return {"none", "clamp"}; }
 std::vector<std::string> densityReinitNames() { return methodNames(densityReinitMethods()); }
 std::vector<std::string> gradientCorrectionNames() { return methodNames(gradientCorrectionMethods()); }
-std::vector<std::string> surfaceTensionNames() { return {"none", "morris", "muller"}; }
+std::vector<std::string> surfaceTensionNames() { return {"none", "morris", "muller", "corrected"}; }
 std::vector<std::string> regimeCheckNames() { return {"stop", "warn", "off"}; }
 std::vector<std::string> probeInterpolationNames() { return {"shepard", "plain"}; }
 std::vector<std::string> shiftingNames() { return {"none", "fickian"}; }
@@ -236,12 +236,14 @@ const std::vector<KeySpec>& caseKeys() {
        "Exponent n of (W_ij/W(dx))^n in the artificial pressure (4 usual)", count(1, 16), nullptr, nullptr},
       {"surface_tension", G::kPhysics, &C::surfaceTension, "",
        "Colour-field surface tension f = sigma kappa grad c: none; morris: kappa = -div(n/|n|) (Morris 2000); "
-       "muller: kappa = -lap c/|n|, f = -sigma lap c n/|n| (Mueller, Charypar & Gross 2003)",
+       "muller: kappa = -lap c/|n|, f = -sigma lap c n/|n| (Mueller, Charypar & Gross 2003); corrected: morris with "
+       "the kernel-gradient correction (Bonet & Lok 1999) in grad c and div(n/|n|), the force over the whole band "
+       "(two phases; the Laplace jump within 2%)",
        {}, nullptr, surfaceTensionNames},
       {"sigma", G::kPhysics, &C::sigma, "N/m (3D), N (2D, per unit depth)",
-       "Surface tension coefficient (surface_tension morris or muller; must be > 0 then)", within(0, 1e9), nullptr, nullptr},
+       "Surface tension coefficient (surface_tension morris, muller or corrected; must be > 0 then)", within(0, 1e9), nullptr, nullptr},
       {"surface_threshold", G::kPhysics, &C::surfaceThreshold, "",
-       "The surface force acts where |grad c| > surface_threshold / h (surface_tension morris or muller)", within(0, 100),
+       "A reliable normal (curvature, force) where |grad c| > surface_threshold / h (morris, muller, corrected)", within(0, 100),
        nullptr, nullptr},
       {"colour_box_min", G::kScene, &C::colourBoxMin, "m",
        "Surface tension between two phases: fluid particles inside this box start with colour 1, the rest with "

@@ -119,7 +119,7 @@ BOOST_AUTO_TEST_CASE(flat_interface_normal_points_along_its_normal) {
 // (d|n|/dr)/|n| ~ 1/h), so only kappa_eff is checked for it.
 BOOST_AUTO_TEST_CASE(curvature_of_a_circular_drop_is_one_over_r_at_two_resolutions) {
   const Real R = 0.2;
-  for (const std::string method : {"morris", "muller"})
+  for (const std::string method : {"morris", "muller", "corrected"})
     for (const auto& [kernel, hOverDx] : {std::pair<std::string, Real>{"muller", 3.0}, {"cubic_spline", 1.3}}) {
       for (const int perR : {10, 20}) {
         const Real dx = R / perR;
@@ -151,8 +151,9 @@ BOOST_AUTO_TEST_CASE(curvature_of_a_circular_drop_is_one_over_r_at_two_resolutio
         // not converge: measured 0.73 and 0.72 with poly6, 0.96 and 0.95
         // with the cubic (the threshold cuts the tails of the band, where
         // its integrand is large); the gate 30% only keeps it from getting
-        // worse unnoticed.
-        if (method == "morris") BOOST_TEST(std::abs(kappaR - 1) < (perR == 10 ? 0.10 : 0.05));
+        // worse unnoticed. The corrected divergence (corrected_surface_tension.hpp)
+        // has Morris's gates (the same interface, the same staircase).
+        if (method != "muller") BOOST_TEST(std::abs(kappaR - 1) < (perR == 10 ? 0.10 : 0.05));
         else BOOST_TEST(std::abs(kappaR - 1) < 0.30);
       }
     }
@@ -196,7 +197,8 @@ BOOST_AUTO_TEST_CASE(no_force_in_the_bulk) {
 // averaged over the snapshots from t = 0.1 s on (the corners are gone by
 // then; the mean takes out the residual pressure waves, about +-5%).
 // Shape: max/min over 32 directions of the drop's radial extent, 1.41 for
-// the square at t = 0 (its diagonal over its half side).
+// the square at t = 0 (its diagonal over its half side). At R/dx = 9 (the
+// case) and 18 (dx, h and dt halved): about 3 s and 45 s on an idle core.
 BOOST_AUTO_TEST_CASE(square_drop_relaxes_to_a_circle_with_the_laplace_pressure_jump) {
   // The reference: dp_2D = sigma / R, checked on its row for the unit drop.
   std::ifstream ref(test::referenceFile("droplet_laplace_rayleigh.csv"));
@@ -213,63 +215,81 @@ BOOST_AUTO_TEST_CASE(square_drop_relaxes_to_a_circle_with_the_laplace_pressure_j
   }
   BOOST_TEST_REQUIRE(unitRow);
 
-  const auto dir = test::scratchDir("droplet_st");
-  const auto r = test::runSph({"run", test::caseFile("droplet_surface_tension"), "--output", dir.string(),
-                               "--end_time", "0.3", "--threads", "1", "--no-progress"});
-  BOOST_TEST_REQUIRE(r.exitCode == 0, r.output);
-  const auto series = test::readPvd(dir / "droplet_surface_tension.pvd");
-  BOOST_TEST_REQUIRE(series.size() > 10u);
-  const Real sigma = 1, dx = 0.02;
-  Real ratioSum = 0, worstShape = 0, firstShape = 0;
-  int count = 0;
-  for (const auto& entry : series) {
-    vtkPolyData* d = entry.data;
-    vtkDataArray* p = d->GetPointData()->GetArray("pressure");
-    vtkDataArray* colour = d->GetPointData()->GetArray("colour");
-    vtkDataArray* kind = d->GetPointData()->GetArray("kind");
-    BOOST_TEST_REQUIRE((p && colour && kind));
-    std::vector<Vec<2>> drop, other;
-    std::vector<Real> pDrop, pOther;
-    for (vtkIdType i = 0; i < d->GetNumberOfPoints(); ++i) {
-      if (kind->GetTuple1(i) != 0) continue;
-      double x[3];
-      d->GetPoint(i, x);
-      (colour->GetTuple1(i) > 0.5 ? drop : other).push_back(Vec<2>(x[0], x[1]));
-      (colour->GetTuple1(i) > 0.5 ? pDrop : pOther).push_back(p->GetTuple1(i));
+  // The shipped case (R/dx = 9) and the same at half the spacing (R/dx = 18;
+  // h and dt halved with it).
+  for (const Real dx : {0.02, 0.01}) {
+    const auto dir = test::scratchDir("droplet_st");
+    std::vector<std::string> args = {"run", test::caseFile("droplet_surface_tension"), "--output", dir.string(),
+                                     "--end_time", "0.3", "--threads", "1", "--no-progress"};
+    if (dx == 0.01) args.insert(args.end(), {"--spacing", "0.01", "--h", "0.013", "--dt", "1.5e-4"});
+    const auto r = test::runSph(args);
+    BOOST_TEST_REQUIRE(r.exitCode == 0, r.output);
+    const auto series = test::readPvd(dir / "droplet_surface_tension.pvd");
+    BOOST_TEST_REQUIRE(series.size() > 10u);
+    const Real sigma = 1;
+    Real ratioSum = 0, worstShape = 0, firstShape = 0, Rdrop = 0;
+    int count = 0;
+    for (const auto& entry : series) {
+      vtkPolyData* d = entry.data;
+      vtkDataArray* p = d->GetPointData()->GetArray("pressure");
+      vtkDataArray* colour = d->GetPointData()->GetArray("colour");
+      vtkDataArray* kind = d->GetPointData()->GetArray("kind");
+      BOOST_TEST_REQUIRE((p && colour && kind));
+      std::vector<Vec<2>> drop, other;
+      std::vector<Real> pDrop, pOther;
+      for (vtkIdType i = 0; i < d->GetNumberOfPoints(); ++i) {
+        if (kind->GetTuple1(i) != 0) continue;
+        double x[3];
+        d->GetPoint(i, x);
+        (colour->GetTuple1(i) > 0.5 ? drop : other).push_back(Vec<2>(x[0], x[1]));
+        (colour->GetTuple1(i) > 0.5 ? pDrop : pOther).push_back(p->GetTuple1(i));
+      }
+      Vec<2> centre = Vec<2>::Zero();
+      for (const auto& x : drop) centre += x;
+      centre /= static_cast<Real>(drop.size());
+      const Real R = std::sqrt(static_cast<Real>(drop.size()) * dx * dx / kPi);
+      Rdrop = R;
+      Real in = 0, out = 0;
+      int nIn = 0, nOut = 0;
+      for (std::size_t i = 0; i < drop.size(); ++i)
+        if ((drop[i] - centre).norm() < 0.5 * R) in += pDrop[i], ++nIn;
+      for (std::size_t i = 0; i < other.size(); ++i) {
+        const Real rr = (other[i] - centre).norm();
+        if (rr > 1.5 * R && rr < 2.5 * R) out += pOther[i], ++nOut;
+      }
+      std::vector<Real> extent(32, 0);
+      for (const auto& x : drop) {
+        const Vec<2> d2 = x - centre;
+        const int bin = static_cast<int>(std::floor((std::atan2(d2.y(), d2.x()) + kPi) / (2 * kPi) * 32)) % 32;
+        extent[static_cast<std::size_t>(bin)] = std::max(extent[static_cast<std::size_t>(bin)], d2.norm());
+      }
+      const Real shape =
+          *std::max_element(extent.begin(), extent.end()) / *std::min_element(extent.begin(), extent.end());
+      const Real ratio = (in / nIn - out / nOut) * R / sigma;
+      BOOST_TEST_MESSAGE("dx " << dx << ", t = " << entry.time << ": dp R / sigma = " << ratio
+                               << ", extent max/min = " << shape);
+      if (entry.time == 0) firstShape = shape;
+      if (entry.time >= 0.1) {
+        ratioSum += ratio;
+        ++count;
+        worstShape = std::max(worstShape, shape);
+      }
     }
-    Vec<2> centre = Vec<2>::Zero();
-    for (const auto& x : drop) centre += x;
-    centre /= static_cast<Real>(drop.size());
-    const Real R = std::sqrt(static_cast<Real>(drop.size()) * dx * dx / kPi);
-    Real in = 0, out = 0;
-    int nIn = 0, nOut = 0;
-    for (std::size_t i = 0; i < drop.size(); ++i)
-      if ((drop[i] - centre).norm() < 0.5 * R) in += pDrop[i], ++nIn;
-    for (std::size_t i = 0; i < other.size(); ++i) {
-      const Real rr = (other[i] - centre).norm();
-      if (rr > 1.5 * R && rr < 2.5 * R) out += pOther[i], ++nOut;
-    }
-    std::vector<Real> extent(32, 0);
-    for (const auto& x : drop) {
-      const Vec<2> d2 = x - centre;
-      const int bin = static_cast<int>(std::floor((std::atan2(d2.y(), d2.x()) + kPi) / (2 * kPi) * 32)) % 32;
-      extent[static_cast<std::size_t>(bin)] = std::max(extent[static_cast<std::size_t>(bin)], d2.norm());
-    }
-    const Real shape = *std::max_element(extent.begin(), extent.end()) / *std::min_element(extent.begin(), extent.end());
-    const Real ratio = (in / nIn - out / nOut) * R / sigma;
-    BOOST_TEST_MESSAGE("t = " << entry.time << ": dp R / sigma = " << ratio << ", extent max/min = " << shape);
-    if (entry.time == 0) firstShape = shape;
-    if (entry.time >= 0.1) {
-      ratioSum += ratio;
-      ++count;
-      worstShape = std::max(worstShape, shape);
-    }
+    const Real mean = ratioSum / count;
+    BOOST_TEST_MESSAGE("R/dx = " << Rdrop / dx << ": mean dp R / sigma from t = 0.1 s: " << mean << " over " << count
+                                 << " snapshots");
+    BOOST_TEST(firstShape > 1.35);  // a square to start with
+    // A circle (to the lattice's staircase, dx/R = 0.11 at R/dx = 9) from 0.1 s on.
+    BOOST_TEST(worstShape < 1.12);
+    // Laplace within 5% (the goal) at both resolutions. Measured
+    // with surface_tension = "corrected" (docs/surface-tension.md): 1.012 at
+    // R/dx = 9 and 0.985 at R/dx = 18 over 0.1-0.3 s; what is left is the
+    // +-5% pressure waves the mean does not quite take out and the
+    // colour gradient's integral across the interface (0.987 on the
+    // disordered set). The morris method gives 0.93 and 0.89 over this
+    // window (0.1-0.3 s) and fails it.
+    BOOST_TEST(std::abs(mean - 1) < 0.05);
   }
-  const Real mean = ratioSum / count;
-  BOOST_TEST_MESSAGE("mean dp R / sigma from t = 0.1 s: " << mean << " over " << count << " snapshots");
-  BOOST_TEST(firstShape > 1.35);       // a square to start with
-  BOOST_TEST(worstShape < 1.12);       // a circle (to the lattice's dx/R = 0.11) from 0.1 s on
-  BOOST_TEST(std::abs(mean - 1) < 0.10);  // the 10%
 }
 
 // Rayleigh oscillation: cases/droplet_oscillation.case, an ellipse with
@@ -282,12 +302,23 @@ BOOST_AUTO_TEST_CASE(square_drop_relaxes_to_a_circle_with_the_laplace_pressure_j
 // w^2 = n (n^2 - 1) sigma / ((rho_in + rho_out) R^3), from the mode-2 row of
 // droplet_laplace_rayleigh.csv with rho_in = rho_out = sigma = 1, scaled
 // to the drop's equal-area radius R = sqrt(N dx^2 / pi) by that law.
-// Measured: 0.357 s against Rayleigh's 0.329 s (+8.5%) at R/dx = 10; the
-// Laplace jump of this interface is 7-9% low (effective sigma ~0.92, which
-// alone lengthens the period by ~4%), and the interface is smeared over a
-// support (0.3 R). Gate 15%: a wrong law fails it by far (sigma or the
-// density sum off by 2: 41%; mode 3: half the period; inviscid damping
-// aside, the viscous shift here is 0.1%).
+// Rayleigh's law is inviscid. This case has nu = 0.005 m^2/s, and between
+// two fluids the oscillation drives a Stokes layer at the interface that
+// lengthens the period: the viscous normal mode of the same cylinder
+// (validation/droplet_oscillation.py, viscous_mode: linearised
+// Navier-Stokes inside and out, equal rho and mu) has a period of 0.3488 s
+// for R = 0.2019, 6.0% longer than Rayleigh's 0.3290 s, so no correct
+// solver of this case is within 5% of Rayleigh (a lower viscosity is: 3.7%
+// at nu = 0.002, but there this WCSPH drop breaks up, morris and corrected
+// alike, at R/dx = 10 and 20).
+// Measured with surface_tension = "corrected" (docs/surface-tension.md):
+// 0.3531 s, +7.3% of Rayleigh's and +1.2% of the viscous mode (morris:
+// +8.5% and +2.3%, its Laplace jump 0.91-0.93 of sigma/R).
+// Gates: 3% of the viscous normal mode (what the case should reproduce;
+// R/dx = 10 leaves the Stokes layer, sqrt(2 nu / omega) = 0.024 = 1.2 dx,
+// barely resolved); 10% of Rayleigh's, a regression gate just past today's
+// 7.3% (a wrong law fails it by far: sigma or the density sum off by 2 gives
+// 41%, mode 3 half the period).
 BOOST_AUTO_TEST_CASE(elliptic_drop_oscillates_at_rayleighs_frequency) {
   std::ifstream ref(test::referenceFile("droplet_laplace_rayleigh.csv"));
   BOOST_TEST_REQUIRE(ref.good());
@@ -342,7 +373,11 @@ BOOST_AUTO_TEST_CASE(elliptic_drop_oscillates_at_rayleighs_frequency) {
   const Real rayleigh = 2 * kPi / (omegaRef * std::pow(Rref / R, 1.5));
   BOOST_TEST_MESSAGE("drop of " << nDrop << " particles, R = " << R << ": " << crossings.size()
                                 << " zero crossings, period " << period << " s, Rayleigh " << rayleigh << " s");
-  BOOST_TEST(std::abs(period / rayleigh - 1) < 0.15);
+  const Real viscousMode = 0.3488;  // s, for R = 0.2019 (320 particles), nu = 0.005: see above
+  BOOST_TEST(nDrop == 320u);
+  BOOST_TEST_MESSAGE("against the viscous normal mode's " << viscousMode << " s: " << period / viscousMode - 1);
+  BOOST_TEST(std::abs(period / viscousMode - 1) < 0.03);
+  BOOST_TEST(std::abs(period / rayleigh - 1) < 0.10);  // regression gate
 }
 
 // Off, the colour pass, its fields and the force do not exist; on, they do.

@@ -76,7 +76,9 @@ Model<D> makeModel(const CaseConfig& c, std::optional<SinusoidalWallMotion<D>> w
   spec.artificialPressure = c.artificialPressure;
   spec.artificialPressureN = static_cast<int>(c.artificialPressureN);
   if (c.surfaceTension != "none") spec.surfaceTension = c.sigma;
-  spec.curvature = c.surfaceTension == "muller" ? CurvatureMethod::kMuller : CurvatureMethod::kMorris;
+  spec.curvature = c.surfaceTension == "muller"      ? CurvatureMethod::kMuller
+                   : c.surfaceTension == "corrected" ? CurvatureMethod::kCorrected
+                                                     : CurvatureMethod::kMorris;
   spec.twoPhase = !c.colourBoxMin.empty() || !c.colourEllipseCenter.empty();
   spec.surfaceThreshold = c.surfaceThreshold;
   spec.wallMotion = wallMotion;

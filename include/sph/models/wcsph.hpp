@@ -121,11 +121,14 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back("artificial_pressure_monaghan2000");
   }
   if (s.surfaceTension > 0) {
-    forces.surfaceTension = ColourSurfaceTension<D>{s.surfaceTension, s.surfaceThreshold / h};
+    // The corrected method spreads kappa over the band's tails: its force acts wherever n != 0.
+    const bool band = s.curvature == CurvatureMethod::kCorrected && s.twoPhase;
+    forces.surfaceTension = ColourSurfaceTension<D>{s.surfaceTension, band ? 0 : s.surfaceThreshold / h};
     info.needs |= fieldBit(kFieldColour) | fieldBit(kFieldColourNormal) | fieldBit(kFieldCurvature);
     info.termNames.push_back("colour_field");
-    info.termNames.push_back(s.curvature == CurvatureMethod::kMuller ? "surface_tension_muller2003"
-                                                                     : "surface_tension_morris2000");
+    info.termNames.push_back(s.curvature == CurvatureMethod::kMuller      ? "surface_tension_muller2003"
+                             : s.curvature == CurvatureMethod::kCorrected ? "surface_tension_corrected_morris2000"
+                                                                          : "surface_tension_morris2000");
   }
   if (s.walls == WallTreatment::kDummy || s.walls == WallTreatment::kDynamic) info.needs |= fieldBit(kFieldVWall);
 

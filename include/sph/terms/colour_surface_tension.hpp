@@ -9,7 +9,7 @@
 //   f_i     = sigma kappa_i n_i        where |n_i| > threshold / h, else 0
 //   a_i    += f_i / rho_i
 //
-// with the curvature kappa_i by one of two methods (surface_tension = ...):
+// with the curvature kappa_i by one of three methods (surface_tension = ...):
 //   muller  kappa_i = - lap c_i / |n_i|,  lap c_i = sum_j (m_j/rho_j) chi_j lap W(r_ij)
 //           (j = i included), so f_i = - sigma lap c_i n_i / |n_i| (Mueller eq. 19)
 //   morris  kappa_i = - div(n/|n|)_i
@@ -17,6 +17,9 @@
 //           over the neighbours j (and i) with a reliable normal, |n_j| > threshold/h
 //           (Morris 2000, eqs. 20-22: the divergence of the unit normal,
 //           normalised by the kernel sum of the particles that have one).
+//   corrected  Morris's, with the kernel-gradient correction in n and in the
+//           divergence, and the force over the whole band (two phases):
+//           terms/corrected_surface_tension.hpp has its equations.
 //
 // chi_j is the particle's colour (the `colour` field): 1 in the phase whose
 // surface has tension, 0 in the other (colour_box_*, colour_ellipse_*); with
@@ -52,6 +55,7 @@
 #include "sph/kernels/kernels.hpp"
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
+#include "sph/terms/corrected_surface_tension.hpp"
 #include "sph/terms/term_bits.hpp"
 
 #include <cmath>
@@ -89,7 +93,9 @@ struct ColourKernel<Muller<D>> {
   }
 };
 
-enum class CurvatureMethod { kMuller, kMorris };
+// kCorrected: terms/corrected_surface_tension.hpp (the kernel-gradient-
+// corrected normal and divergence, the force over the whole band).
+enum class CurvatureMethod { kMuller, kMorris, kCorrected };
 
 // n_i and kappa_i for every fluid particle i (fluid neighbours only).
 // twoPhase (a colour region was given): the difference forms
@@ -99,7 +105,7 @@ enum class CurvatureMethod { kMuller, kMorris };
 // difference form is exactly 0 in the bulk of either phase, where the plain
 // sum carries noise of order 0.1/h at 10% disorder. At a free surface (no
 // colour region: chi = 1 everywhere) the plain sums are the only ones that
-// see the surface, so they are used there.
+// see the surface, so they are used there (and kCorrected is kMorris there).
 // r_ij = sep(x_i, x_j): the minimum image along periodic axes.
 template <int D, class Kernel, class Sep = FreeSpace>
 void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel,
@@ -108,6 +114,7 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
   const std::size_t n = P.fluidCount();
   const Real lap0 = W.laplacian(0), W0 = W.W(0);
   const bool muller = method == CurvatureMethod::kMuller;
+  const bool corrected = method == CurvatureMethod::kCorrected && twoPhase;
 #pragma omp parallel if (n >= kMinParallelSize)
   {
 #pragma omp for schedule(static)
@@ -115,27 +122,33 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
       const Vec<D> xi = P.x[i];
       const Real base = twoPhase ? P.colour[i] : 0;
       Vec<D> normal = Vec<D>::Zero();
+      Mat<D> M = Mat<D>::Zero();  // corrected: sum_j V_j (x_j - x_i) (x) grad_i W_ij
       Real lap = (P.colour[i] - base) * P.m[i] / P.rho[i] * lap0;
       neighbours.forEachByKind(
           i,
           [&](std::uint32_t j) {
             const Real dchi = P.colour[j] - base;
-            if (dchi == 0) return;
+            if (dchi == 0 && !corrected) return;
             const Vec<D> rij = sep(xi, P.x[j]);
             const Real r = rij.norm();
-            const Real Vj = dchi * P.m[j] / P.rho[j];
-            normal += (Vj * W.dWdr_r(r)) * rij;
-            if (muller) lap += Vj * W.laplacian(r);
+            const Real Vj = P.m[j] / P.rho[j];
+            const Real g = W.dWdr_r(r);
+            if (corrected) M.noalias() -= (Vj * g) * (rij * rij.transpose());
+            if (dchi == 0) return;
+            normal += (dchi * Vj * g) * rij;
+            if (muller) lap += dchi * Vj * W.laplacian(r);
           },
           [](std::uint32_t) {});
+      if (corrected && !normal.isZero()) normal = correctedGradient<D>(M, normal);
       P.colourNormal[i] = normal;
       const Real norm = normal.norm();
       if (muller) P.curvature[i] = norm > minNormal ? -lap / norm : 0;
     }
-    // Morris: the divergence of the unit normal, over the particles that
-    // have a reliable one (the loop above has finished: omp for's barrier).
+    // Morris (and corrected): the divergence of the unit normal, over the
+    // particles that have a reliable one (the loop above has finished: omp
+    // for's barrier).
     if (!muller) {
-#pragma omp for schedule(static) nowait
+#pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
         const Real ni = P.colourNormal[i].norm();
         if (!(ni > minNormal)) {
@@ -144,6 +157,7 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
         }
         const Vec<D> xi = P.x[i], nhat_i = P.colourNormal[i] / ni;
         Real div = 0, shepard = P.m[i] / P.rho[i] * W0;
+        Mat<D> G = Mat<D>::Zero(), Mr = Mat<D>::Zero();
         neighbours.forEachByKind(
             i,
             [&](std::uint32_t j) {
@@ -152,18 +166,47 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
               const Vec<D> rij = sep(xi, P.x[j]);
               const Real r = rij.norm();
               const Real Vj = P.m[j] / P.rho[j];
-              div += Vj * W.dWdr_r(r) * (P.colourNormal[j] / nj - nhat_i).dot(rij);
+              const Real g = W.dWdr_r(r);
+              const Vec<D> dn = P.colourNormal[j] / nj - nhat_i;
+              div += Vj * g * dn.dot(rij);
               shepard += Vj * W.W(r);
+              if (corrected) {
+                G.noalias() += (Vj * g) * (dn * rij.transpose());
+                Mr.noalias() -= (Vj * g) * (rij * rij.transpose());
+              }
             },
             [](std::uint32_t) {});
-        P.curvature[i] = -div / shepard;
+        P.curvature[i] = corrected ? correctedCurvature<D>(G, Mr, -div / shepard) : -div / shepard;
+      }
+      // Corrected: the band's tails (0 < |n| <= minNormal) take the kernel
+      // mean of their reliable neighbours' kappa, so that the force acts on
+      // the whole of the colour gradient.
+      if (corrected) {
+#pragma omp for schedule(static)
+        for (std::size_t i = 0; i < n; ++i) {
+          const Real ni = P.colourNormal[i].norm();
+          if (ni > minNormal || !(ni > 0)) continue;
+          const Vec<D> xi = P.x[i];
+          Real sum = 0, weight = 0;
+          neighbours.forEachByKind(
+              i,
+              [&](std::uint32_t j) {
+                if (!(P.colourNormal[j].norm() > minNormal)) return;
+                const Real w = P.m[j] / P.rho[j] * W.W(sep(xi, P.x[j]).norm());
+                sum += w * P.curvature[j];
+                weight += w;
+              },
+              [](std::uint32_t) {});
+          P.curvature[i] = weight > 0 ? sum / weight : 0;
+        }
       }
     }
   }
 }
 
 // The force of the epilogue: a_i += sigma kappa_i n_i / rho_i where
-// |n_i| > minNormal (= threshold / h).
+// |n_i| > minNormal (= threshold / h; 0 for the corrected method, whose
+// kappa is 0 where n carries no curvature).
 template <int D>
 struct ColourSurfaceTension {
   static constexpr unsigned bit = term_bits::kSurfaceTension;
