@@ -226,15 +226,24 @@ BOOST_AUTO_TEST_CASE(unscaled_setting_fails_on_a_slow_star) {
   BOOST_TEST(starErrorWith(2, 1, 1.5, 0.05, 0.5, old, "old") > 0.05);
 }
 
-// 3D at n = 0.5 on both stars (8000 particles, cubic spline: about 15 s of
-// one core each). The n = 2 setting (16 000 particles, Wendland C2: about
-// 100 s) is measured by studies/toy_star_n_3d.study instead.
+// 3D at n = 0.5 on both stars (8000 particles, cubic spline: about 10 s of
+// one core each). n = 2 is the next test (label study).
 BOOST_AUTO_TEST_CASE(recommended_setting_on_other_3d_stars) {
   for (const auto& star : {std::array<Real, 3>{1, 1.5, 0.05}, std::array<Real, 3>{5, 0.5, 0.5}}) {
     const StarSetting s = recommendedStar(3, star[0], star[1], star[2], 0.5);
     BOOST_TEST(starErrorWith(3, star[0], star[1], star[2], 0.5, s, "rule") < 0.01,
                "3D star M = " << star[0] << ", R = " << star[1] << ", k = " << star[2] << ", n = 0.5");
   }
+}
+
+// 3D at n = 2 (16 000 particles, Wendland C2: about 40 s of one core, so
+// out of the core label: ctest -L study runs it as toy_star.steep_3d).
+// Measured 0.68% on this star (1.50% with the old setting); the shipped
+// star at n = 2 0.71%. Gate 1%, the goal.
+BOOST_AUTO_TEST_CASE(recommended_setting_on_a_steep_3d_star, *boost::unit_test::disabled()) {
+  const StarSetting s = recommendedStar(3, 1, 0.5, 0.05, 2);
+  BOOST_TEST(s.kernel == "wendland_c2");
+  BOOST_TEST(starErrorWith(3, 1, 0.5, 0.05, 2, s, "rule") < 0.01);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
