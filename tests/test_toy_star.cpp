@@ -116,8 +116,8 @@ Real starErrorWith(int dimension, Real M, Real R, Real k, Real n, const StarSett
       "--star_particles", "[" + std::to_string(s.particles) + "]", "--h", num(s.h), "--kernel", s.kernel,
       "--damping", num(s.damping), "--end_time", num(s.endTime), "--dt", num(s.dt), "--domain_min", vec("-"),
       "--domain_max", vec("")};
-  const auto r = test::runSph(args);
-  BOOST_TEST_REQUIRE(r.exitCode == 0, r.output);
+  const auto res = test::runSph(args);
+  BOOST_TEST_REQUIRE(res.exitCode == 0, res.output);
   std::filesystem::path last;
   for (const auto& e : std::filesystem::directory_iterator(dir))
     if (e.path().extension() == ".vtp" && e.path() > last) last = e.path();
