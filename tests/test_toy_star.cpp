@@ -227,7 +227,7 @@ BOOST_AUTO_TEST_CASE(unscaled_setting_fails_on_a_slow_star) {
 }
 
 // 3D at n = 0.5 on both stars (8000 particles, cubic spline: about 10 s of
-// one core each). n = 2 is the next test (label study).
+// one core each). n = 2: the suite toy_star_steep below (label study).
 BOOST_AUTO_TEST_CASE(recommended_setting_on_other_3d_stars) {
   for (const auto& star : {std::array<Real, 3>{1, 1.5, 0.05}, std::array<Real, 3>{5, 0.5, 0.5}}) {
     const StarSetting s = recommendedStar(3, star[0], star[1], star[2], 0.5);
@@ -236,11 +236,16 @@ BOOST_AUTO_TEST_CASE(recommended_setting_on_other_3d_stars) {
   }
 }
 
-// 3D at n = 2 (16 000 particles, Wendland C2: about 50 s of one core, so
-// out of the core label: ctest -L study runs it as toy_star.steep_3d).
-// Measured 0.68% on this star (1.50% with the old setting); the shipped
-// star at n = 2 0.71%. Gate 1%, the goal.
-BOOST_AUTO_TEST_CASE(recommended_setting_on_a_steep_3d_star, *boost::unit_test::disabled()) {
+BOOST_AUTO_TEST_SUITE_END()
+
+// 3D at n = 2 (16 000 particles, Wendland C2: about 50 s of one core), so
+// in a suite of its own, off by default and out of the core label: the
+// ctest toy_star.steep_3d (label study) runs it by name. Measured 0.68% on
+// this star (1.50% with the old setting); the shipped star at n = 2 0.71%.
+// Gate 1%, the goal.
+BOOST_AUTO_TEST_SUITE(toy_star_steep, *boost::unit_test::disabled())
+
+BOOST_AUTO_TEST_CASE(recommended_setting_on_a_steep_3d_star) {
   const StarSetting s = recommendedStar(3, 1, 0.5, 0.05, 2);
   BOOST_TEST(s.kernel == "wendland_c2");
   BOOST_TEST(starErrorWith(3, 1, 0.5, 0.05, 2, s, "rule") < 0.01);
