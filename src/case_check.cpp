@@ -146,7 +146,7 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
              "isolated splash particle: boundaries/wall_guard.hpp)\n";
     else
       warn("wall_guard = false: the wall particles alone hold the fluid; an isolated splash particle at p <= 0 can "
-           "pass them and stop the run (measured: the obstacle dam break at 0.73 s)");
+           "pass them and stop the run (measured: the obstacle dam break at 0.33 s)");
   }
   if (dx > 0 && c.model == "wcsph" && c.kernel == "cubic_spline" && h / dx >= 1.3)
     warn("cubic spline at h/dx " + fmt(h / dx) + ": it pairs particles from h/dx 1.3 (measured: 39% paired at 1.3, " +

@@ -646,16 +646,16 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
           << shortestDecimal(cc.cspmParticles ? 100.0 * static_cast<double>(cc.cspmFallbacks) / static_cast<double>(cc.cspmParticles) : 0.0)
           << "%)\n";
     if (c.walls && c.boundary != "reflecting" && c.wallGuard) {
-      const long taken = scene.stepIndex() - firstStep;
-      const double perStep = taken > 0 ? static_cast<double>(scene.wallGuardActions()) / static_cast<double>(taken) : 0;
+      // This process's actions and steps (run.json keeps the total over resumes).
+      const long taken = scene.stepIndex() - firstStep, actions = scene.wallGuardActions();
       out << "  wall guard       ";
-      if (record.wallGuardActions == 0)
+      if (actions == 0) {
         out << "0 times needed (the wall particles held every fluid particle)\n";
-      else {
+      } else {
         char rate[32];
-        std::snprintf(rate, sizeof rate, "%.3g", perStep);
-        out << record.wallGuardActions << " times it put a fluid particle back inside the walls (" << rate
-            << " per step, of " << scene.particles().fluidCount() << " fluid particles)\n";
+        std::snprintf(rate, sizeof rate, "%.3g", taken > 0 ? static_cast<double>(actions) / static_cast<double>(taken) : 0.0);
+        out << actions << " times it put a fluid particle back inside the walls (" << rate << " per step, of "
+            << scene.particles().fluidCount() << " fluid particles)\n";
       }
     }
     if (c.densityReinit != "none") {

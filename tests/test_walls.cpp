@@ -58,10 +58,11 @@ Real nearest(const std::vector<Vec<2>>& from, const Vec<2>& x) {
 
 // No leaks: a lone fluid particle thrown at the walls of a closed tank, at
 // dam-break speeds, towards every face, edge and corner (and at an obstacle
-// box), stays inside with dummy and dynamic wall particles (their forces
-// hold it: its continuity density rises against them); the shipped obstacle
+// box), stays inside with dummy and dynamic wall particles and the wall
+// guard (on, as by default: these test the two together; that the forces
+// alone hold such a particle was measured, not tested); the shipped obstacle
 // dam break, where a particle does pass the wall particles, is held by the
-// wall guard.
+// guard and leaks without it.
 // The shipped water physics (cases/dam_break.case: Wendland, h = 1.5 dx,
 // Tait with c0 = 44, continuity density with delta-SPH, Monaghan 0.02,
 // clamped negative pressure, leap-frog, c0 dt / h = 0.15) in a closed tank

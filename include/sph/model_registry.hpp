@@ -85,6 +85,16 @@ Model<D> makeModel(const CaseConfig& c, std::optional<SinusoidalWallMotion<D>> w
   return makeWcsph<D>(spec);
 }
 
+// The case's obstacle boxes (obstacle_min/obstacle_max), in order.
+template <int D>
+std::vector<AxisBox<D>> obstacleBoxes(const CaseConfig& c) {
+  std::vector<AxisBox<D>> boxes;
+  for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D)
+    boxes.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
+                     toVec<D>({c.obstacleMax.begin() + k, c.obstacleMax.begin() + k + D})});
+  return boxes;
+}
+
 // The guard at the wall particles' surfaces: the faces of the domain box
 // that have walls (not periodic, not an open top) and every obstacle box.
 template <int D>
@@ -96,9 +106,7 @@ WallGuard<D> makeWallGuard(const CaseConfig& c) {
     guard.lo[d] = c.domainMin[static_cast<std::size_t>(d)];
     if (d < D - 1 || c.lid) guard.hi[d] = c.domainMax[static_cast<std::size_t>(d)];
   }
-  for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D)
-    guard.obstacles.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
-                               toVec<D>({c.obstacleMax.begin() + k, c.obstacleMax.begin() + k + D})});
+  guard.obstacles = obstacleBoxes<D>(c);
   guard.paddle = static_cast<int>(c.paddle) - 1;
   return guard;
 }
@@ -131,9 +139,9 @@ Scene<D> makeScene(const CaseConfig& c, InitialState<D> init,
   if (check.wallParticles) check.tolerance = c.spacing / 2;
   check.openTop = check.wallParticles && !c.lid;
   // (The paddle moves: fluid inside it is not looked for.)
-  for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D)
-    if (static_cast<long>(k / D) + 1 != c.paddle) check.obstacles.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
-                               toVec<D>({c.obstacleMax.begin() + k, c.obstacleMax.begin() + k + D})});
+  const auto boxes = obstacleBoxes<D>(c);
+  for (std::size_t k = 0; k < boxes.size(); ++k)
+    if (static_cast<long>(k) + 1 != c.paddle) check.obstacles.push_back(boxes[k]);
   const auto motion = makeWallMotion<D>(c, init.particles.fluidCount());
   if (motion) {
     // The paddle's velocity at the start (its particles come at rest).

@@ -35,9 +35,7 @@ struct StateCheck {
   // distance to the first layer of wall particles, since a particle near
   // a wall may stray a little past the wall line and be pushed back.
   Real tolerance = 0;
-  struct Box {
-    Vec<D> lo, hi;
-  };
+  using Box = AxisBox<D>;
   std::vector<Box> obstacles;  // solid boxes a fluid particle must not enter
 
   bool ok(const Particles<D>& P, std::size_t i) const {

@@ -22,6 +22,12 @@ using Mat = Eigen::Matrix<Real, D, D>;
 template <int D>
 using IVec = Eigen::Matrix<std::int64_t, D, 1>;
 
+// An axis-aligned box [lo, hi] (an obstacle, a region).
+template <int D>
+struct AxisBox {
+  Vec<D> lo, hi;
+};
+
 // Loops over fewer particles than this run on one thread: below it, starting
 // an OpenMP team costs more than the loop (a 4-particle case ran 40x slower).
 constexpr std::size_t kMinParallelSize = 512;

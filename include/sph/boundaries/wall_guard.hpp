@@ -48,9 +48,7 @@ namespace sph {
 
 template <int D>
 struct WallGuard {
-  struct Box {
-    Vec<D> lo, hi;
-  };
+  using Box = AxisBox<D>;
   // The fluid region: a face at +-infinity has no wall (periodic axis, open top).
   Vec<D> lo = Vec<D>::Constant(-std::numeric_limits<Real>::infinity());
   Vec<D> hi = Vec<D>::Constant(std::numeric_limits<Real>::infinity());
@@ -80,13 +78,16 @@ struct WallGuard {
       const Vec<D> blo = moving ? Vec<D>(obstacles[k].lo + paddleOffset) : obstacles[k].lo;
       const Vec<D> bhi = moving ? Vec<D>(obstacles[k].hi + paddleOffset) : obstacles[k].hi;
       if (!((x.array() > blo.array()).all() && (x.array() < bhi.array()).all())) continue;
-      // Out through the nearest face; its outward normal points into the fluid.
+      // Out through the nearest face that touches fluid (not one lying on
+      // a wall of the domain, as a box's bottom on the floor); its outward
+      // normal points into the fluid.
       int face = 0, side = -1;
       Real depth = std::numeric_limits<Real>::infinity();
       for (int d = 0; d < D; ++d) {
-        if (x[d] - blo[d] < depth) depth = x[d] - blo[d], face = d, side = -1;
-        if (bhi[d] - x[d] < depth) depth = bhi[d] - x[d], face = d, side = +1;
+        if (blo[d] > lo[d] && x[d] - blo[d] < depth) depth = x[d] - blo[d], face = d, side = -1;
+        if (bhi[d] < hi[d] && bhi[d] - x[d] < depth) depth = bhi[d] - x[d], face = d, side = +1;
       }
+      if (depth == std::numeric_limits<Real>::infinity()) continue;  // a box filling the domain: no fluid face
       x[face] = 2 * (side < 0 ? blo[face] : bhi[face]) - x[face];
       // Seen from the fluid, the wall's outward direction (into the solid) is -side.
       stopInto(P, i, face, -side, moving ? paddleVelocity[face] : 0);
