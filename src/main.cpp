@@ -29,6 +29,7 @@ const char* kTopHelp =
     "Usage: sph run CASE_FILE [--output DIR] [--KEY VALUE ...]\n"
     "       sph check CASE_FILE [--KEY VALUE ...]   (what the case implies; nothing is run or written)\n"
     "       sph study STUDY_FILE [--output DIR] [--jobs N] [--tolerance X]\n"
+    "       sph keys                                 (every key as Markdown: docs/keys.md)\n"
     "Every key of a case file is also a flag that overrides it.";
 
 // One CLI11 option per row of the key table (case_keys.hpp), in its topic
@@ -328,7 +329,7 @@ int missingSubcommand(int argc, char** argv) {
     }
     return fail("missing subcommand: did you mean '" + command + "'?");
   }
-  return fail("unknown subcommand '" + first + "': the subcommands are 'run', 'check' and 'study': " +
+  return fail("unknown subcommand '" + first + "': the subcommands are 'run', 'check', 'study' and 'keys': " +
               "sph run CASE_FILE [--output DIR] [--KEY VALUE ...] ('sph --help' lists the keys)");
 }
 
@@ -338,6 +339,10 @@ int main(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "run") return runCommand(argc - 1, argv + 1);
   if (argc >= 2 && std::string(argv[1]) == "study") return studyCommand(argc - 1, argv + 1);
   if (argc >= 2 && std::string(argv[1]) == "check") return checkCommand(argc - 1, argv + 1);
+  if (argc == 2 && std::string(argv[1]) == "keys") {
+    std::cout << sph::keyReferenceMarkdown();
+    return 0;
+  }
   if (argc >= 2 && argv[1][0] != '-') return missingSubcommand(argc, argv);
   CLI::App app(kTopHelp, "sph");
   app.set_version_flag("--version", std::string("sph ") + SPH_VERSION);

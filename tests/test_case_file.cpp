@@ -351,7 +351,7 @@ BOOST_AUTO_TEST_CASE(missing_subcommand) {
   expectRefusedRun({dam}, "sph: error: missing subcommand: did you mean 'sph run " + dam + "'?");
   expectRefusedRun({dam, "--end_time", "0.1"}, "did you mean 'sph run " + dam + " --end_time 0.1'?");
   expectRefusedRun({"my case.case"}, "did you mean 'sph run \"my case.case\"'?");
-  expectRefusedRun({"rn", dam}, "unknown subcommand 'rn': the subcommands are 'run', 'check' and 'study'");
+  expectRefusedRun({"rn", dam}, "unknown subcommand 'rn': the subcommands are 'run', 'check', 'study' and 'keys'");
   const auto bare = test::runSph({});
   BOOST_TEST(bare.exitCode == 2);
   BOOST_TEST(bare.output.find("Usage: sph run CASE_FILE") != std::string::npos, bare.output);

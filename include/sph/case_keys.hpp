@@ -70,4 +70,8 @@ std::string resumeKeysText();  // "end_time, output_every, ... and progress", fo
 // A case file holding every key with its value in c, by topic.
 std::string resolvedCaseText(const CaseConfig& c);
 
+// The key reference, docs/keys.md (src/key_reference.cpp): every key as
+// Markdown tables by topic, with unit, default, allowed values and help.
+std::string keyReferenceMarkdown();
+
 }  // namespace sph
