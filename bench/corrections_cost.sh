@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Cost of each kernel correction and surface term when on (README, "Kernel
-# corrections" and "Surface tension and the tensile instability"): the 2D
+# Cost of each kernel correction and surface term when on (docs/methods/corrections.md
+# and docs/methods/surface-tension.md): the 2D
 # dam break at dx = 3.5 mm (cases/dam_break_mm.case, ~10 000 fluid + ~3 400
 # wall particles), STEPS steps, 1 and 2 threads, REPEATS repetitions with
 # the settings interleaved (so that a change of the machine's load hits all

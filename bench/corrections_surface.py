@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The hydrostatic tank near its free surface, for the kernel-correction
-study (README, "Kernel corrections"): the pressure error of the layers of
+study (docs/methods/corrections.md): the pressure error of the layers of
 particles within one kernel support of the free surface, against the
 compressible column dp/dy = -g rho(p), in units of rho0 g H, from the last
 snapshot of a run of cases/hydrostatic_tank.case; beside it the figures of

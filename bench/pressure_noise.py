@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Pressure noise at a point probe (README, "Kernel corrections"): the
+"""Pressure noise at a point probe (docs/methods/corrections.md): the
 standard deviation of p(t) about a smoothed p(t), from a run's probes.csv
 (cases/dam_break_mm.case records the left wall's pressure near the floor,
 probe `left_wall`, every millisecond).

@@ -1,7 +1,7 @@
 // sph check: what a case implies before it runs (case_check.hpp).
 //
-// The stable ranges it warns about were measured with sph (docs/seed-model.md and docs/study-and-atlas.md, "Where
-// the seed scheme works" and the stability notes of issue 9):
+// The stable ranges it warns about were measured with sph (docs/methods/seed-model.md, "Where
+// the seed scheme works", and docs/stability-atlas.md, issue 9):
 //   acoustic   leap-frog and symplectic Euler are unstable from c0 dt / h
 //              = 1.88 (cubic spline) and 1.81 (Wendland C2) at h/dx 1.3,
 //              rk4 from 2.67 and 2.56 (validation/stability_atlas.py, against
@@ -111,7 +111,7 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       << "\n";
   if (c0 > 0) {
     const Real courant = c0 * dt / h;
-    // The stability atlas's measured limits at h/dx 1.3 (docs/study-and-atlas.md, "Stability atlas").
+    // The stability atlas's measured limits at h/dx 1.3 (docs/stability-atlas.md).
     const bool rk4 = c.integrator == "rk4", wendland = c.kernel == "wendland_c2";
     const Real limit = rk4 ? (wendland ? 2.56 : 2.67) : (wendland ? 1.81 : 1.88);
     out << "    acoustic       c0 dt / h = " << fmt(courant) << " (aim <= 0.25; ";

@@ -282,7 +282,7 @@ BOOST_AUTO_TEST_CASE(square_drop_relaxes_to_a_circle_with_the_laplace_pressure_j
     // A circle (to the lattice's staircase, dx/R = 0.11 at R/dx = 9) from 0.1 s on.
     BOOST_TEST(worstShape < 1.12);
     // Laplace within 5% (the goal) at both resolutions. Measured
-    // with surface_tension = "corrected" (docs/surface-tension.md): 1.012 at
+    // with surface_tension = "corrected" (docs/validation/surface-tension.md): 1.012 at
     // R/dx = 9 and 0.985 at R/dx = 18 over 0.1-0.3 s; what is left is the
     // +-5% pressure waves the mean does not quite take out and the
     // colour gradient's integral across the interface (0.987 on the
@@ -311,7 +311,7 @@ BOOST_AUTO_TEST_CASE(square_drop_relaxes_to_a_circle_with_the_laplace_pressure_j
 // solver of this case is within 5% of Rayleigh (a lower viscosity is: 3.7%
 // at nu = 0.002, but there this WCSPH drop breaks up, morris and corrected
 // alike, at R/dx = 10 and 20).
-// Measured with surface_tension = "corrected" (docs/surface-tension.md):
+// Measured with surface_tension = "corrected" (docs/validation/surface-tension.md):
 // 0.3531 s, +7.3% of Rayleigh's and +1.2% of the viscous mode (morris:
 // +8.5% and +2.3%, its Laplace jump 0.91-0.93 of sigma/R).
 // Gates: 3% of the viscous normal mode (what the case should reproduce;

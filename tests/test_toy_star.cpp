@@ -57,7 +57,7 @@ Real relaxedStarError(const std::string& caseName, const std::vector<std::string
 }
 
 // The recommended setting for a star of mass M, radius R, stiffness k and
-// index n (docs/toy-stars.md): N and h from n (h = c R (pi/N)^(1/2) in 2D,
+// index n (docs/methods/toy-stars.md): N and h from n (h = c R (pi/N)^(1/2) in 2D,
 // c R (4 pi / 3N)^(1/3) in 3D, so h/R is fixed for a given n), and the
 // damping, end time and largest step in units of the dynamical time
 // 1/sqrt(lambda).
@@ -204,7 +204,7 @@ BOOST_AUTO_TEST_CASE(relaxed_3d_star_matches_analytic_profile) {
 // (M = 1, R = 1.5, k = 0.05: sqrt(lambda) = 0.05-0.3) and a fast, compact
 // one (M = 5, R = 0.5, k = 0.5: sqrt(lambda) = 7-40) at n = 0.5 and 2. The
 // gate is the goal, 1%; measured 0.46% (n = 0.5) and 0.78-0.79% (n = 2) in
-// 2D, 0.5% at n = 0.5 in 3D (docs/toy-stars.md). The star's equilibrium is
+// 2D, 0.5% at n = 0.5 in 3D (docs/methods/toy-stars.md). The star's equilibrium is
 // self-similar (lengths in R, times in 1/sqrt(lambda)), so these errors are
 // those of the shipped star at the same n, N and h/R; the gate fails when
 // the setting is not scaled (next test) or when h/R or N is coarsened

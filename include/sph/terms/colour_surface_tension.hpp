@@ -44,7 +44,7 @@
 // free surface (no colour region) the dipole does not cancel and adds an
 // inward pull of order sigma/h whatever the curvature. Morris's divergence
 // of the unit normal is kappa across the whole band, and his force has no
-// dipole. Measured in docs/wcsph-model.md ("Surface tension and the tensile instability").
+// dipole. Measured in docs/methods/surface-tension.md.
 //
 // Pass structure: a pre-pass (ColourFieldPass) computes n and kappa for the
 // fluid particles from their fluid neighbours (walls carry no colour: a

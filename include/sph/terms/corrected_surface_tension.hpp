@@ -13,7 +13,7 @@
 //   kappa_i = sum_j V_j kappa_j W_ij / sum_j V_j W_ij  over reliable j, where 0 < |n_i| <= eps/h
 //   f_i     = sigma kappa_i n_i  wherever n_i != 0,  a_i += f_i / rho_i
 //
-// Why (measured, docs/surface-tension.md): the pressure jump a CSF force
+// Why (measured, docs/validation/surface-tension.md): the pressure jump a CSF force
 // makes across an interface is sigma kappa times the integral of |n| along
 // the normal, which must be 1 (n is the gradient of a unit step). With the
 // plain kernel sum and the force cut at |n| > eps/h (the `morris` method)
