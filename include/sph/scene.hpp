@@ -78,12 +78,7 @@ class Scene {
 
   // Sort, optionally scale the masses to rho0, and evaluate the model at the
   // initial state. Returns a failure if the initial state is not finite.
-  std::optional<StateFailure> initialise(bool scaleMass) {
-    sort();
-    if (scaleMass) scaleMassToRestDensity(P_, neighbours_, model_);
-    model_.evaluate(P_, neighbours_, StepContext{step_, time_, 0});
-    return finishStep([](std::size_t) {});
-  }
+  std::optional<StateFailure> initialise(bool scaleMass);
 
   // Continue from a snapshot of this scene taken after step `step` at time
   // `time`: its particles already carry the rates the integrator needs (a,
@@ -91,66 +86,13 @@ class Scene {
   // frog's a was evaluated with the predicted velocity, so re-evaluating it
   // from the snapshot's v would not continue the run bit for bit. The
   // snapshot is in sorted order, so the sort must leave it as it is.
-  std::optional<StateFailure> resume(long step, Real time) {
-    step_ = step;
-    time_ = time;
-    sort();
-    const auto& order = grid_.order();
-    for (std::size_t k = 0; k < order.size(); ++k)
-      if (order[k] != k)
-        throw std::runtime_error("the snapshot is not in the order sph keeps its particles (written by another program?)");
-    model_.refreshCspmMatrices(P_, neighbours_);
-    return finishStep([](std::size_t) {});
-  }
+  std::optional<StateFailure> resume(long step, Real time);
 
   // One step; an adaptive dt is cut so that the step ends no later than
   // `landOn` (the next output time).
-  std::optional<StateFailure> step(Real landOn = std::numeric_limits<Real>::infinity()) {
-    const TimeStepChoice choice = timeStep_.next(extremes_, model_, time_, landOn);
-    lastStep_ = choice;
-    context_ = StepContext{step_ + 1, time_ + choice.dt, choice.dt};
-    if (guard_ && wallMotion_ && guard_->paddle >= 0) {
-      guard_->paddleOffset = wallMotion_->displacement(time_ + choice.dt);  // the case places it at t = 0, where sin = 0
-      guard_->paddleVelocity = wallMotion_->velocity(time_ + choice.dt);
-    }
-    long guarded = 0;
-    auto constrain = [&](Particles<D>& P, std::size_t i) {
-      if (walls_) (*walls_)(P, i);
-      if (guard_ && (*guard_)(P, i)) {
-#pragma omp atomic
-        ++guarded;
-      }
-    };
-    std::optional<StateFailure> failure;
-    if (shifting_) shifting_->apply(P_, neighbours_, choice.dt);
-    if (wallMotion_) wallMotion_->advance(P_, time_, time_ + choice.dt);
-    std::visit(
-        [&](const auto& integrator) {
-          context_.densityRateApart = std::decay_t<decltype(integrator)>::kDensityRateApart;
-          integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain,
-                             [&] { model_.densityRate(P_, neighbours_); });
-          failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
-        },
-        integrator_);
-    guardActions_ += guarded;
-    if (!failure) model_.afterStep(P_, neighbours_, context_);
-    ++step_;
-    // A step cut to land on end_time or an output time ends exactly there
-    // (time + (t - time) can miss t by one ulp).
-    const std::string_view cut = choice.criterion;
-    if (!timeStep_.adaptive()) time_ = fixedStepTime(step_);
-    else if (cut == "end") time_ = timeStep_.endTime;
-    else if (cut == "output") time_ = landOn;
-    else time_ += choice.dt;
-    return failure;
-  }
+  std::optional<StateFailure> step(Real landOn = std::numeric_limits<Real>::infinity());
 
-  Energy energy() const {
-    Energy e;
-    for (std::size_t i = 0; i < P_.fluidCount(); ++i) e.kinetic += 0.5 * P_.m[i] * P_.v[i].squaredNorm();
-    e.potential = model_.potentialEnergy(P_);
-    return e;
-  }
+  Energy energy() const;
 
   const Particles<D>& particles() const { return P_; }
   Particles<D>& particles() { return P_; }
@@ -183,21 +125,9 @@ class Scene {
     return startTime_ + static_cast<Real>(n) * timeStep_.dt;
   }
 
-  void sort() {
-    if (periodic_.any()) {
-      const std::size_t n = P_.size();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-      for (std::size_t i = 0; i < n; ++i) periodic_.wrap(P_.x[i]);
-    }
-    grid_.build(P_.x, P_.fluidCount());
-    P_.permute(grid_.order());
-    neighbours_.build(grid_, P_.x, model_.support(), P_.fluidCount());
-  }
+  void sort();
 
-  void evaluate() {
-    sort();
-    model_.evaluate(P_, neighbours_, context_);
-  }
+  void evaluate();
 
   // One loop over the particles: finish(i), the state check, and (adaptive
   // time steps only) the extremes the next time step needs. Returns the
@@ -252,5 +182,99 @@ class Scene {
   StateExtremes extremes_;
   TimeStepChoice lastStep_{timeStep_.dt, "fixed"};
 };
+
+// The member functions that do the work, compiled once for D = 2 and 3 in
+// src/instantiate_scene.cpp; every other translation unit sees only their
+// declarations (extern template below).
+template <int D>
+std::optional<StateFailure> Scene<D>::initialise(bool scaleMass) {
+  sort();
+  if (scaleMass) scaleMassToRestDensity(P_, neighbours_, model_);
+  model_.evaluate(P_, neighbours_, StepContext{step_, time_, 0});
+  return finishStep([](std::size_t) {});
+}
+
+template <int D>
+std::optional<StateFailure> Scene<D>::resume(long step, Real time) {
+  step_ = step;
+  time_ = time;
+  sort();
+  const auto& order = grid_.order();
+  for (std::size_t k = 0; k < order.size(); ++k)
+    if (order[k] != k)
+      throw std::runtime_error("the snapshot is not in the order sph keeps its particles (written by another program?)");
+  model_.refreshCspmMatrices(P_, neighbours_);
+  return finishStep([](std::size_t) {});
+}
+
+template <int D>
+std::optional<StateFailure> Scene<D>::step(Real landOn) {
+  const TimeStepChoice choice = timeStep_.next(extremes_, model_, time_, landOn);
+  lastStep_ = choice;
+  context_ = StepContext{step_ + 1, time_ + choice.dt, choice.dt};
+  if (guard_ && wallMotion_ && guard_->paddle >= 0) {
+    guard_->paddleOffset = wallMotion_->displacement(time_ + choice.dt);  // the case places it at t = 0, where sin = 0
+    guard_->paddleVelocity = wallMotion_->velocity(time_ + choice.dt);
+  }
+  long guarded = 0;
+  auto constrain = [&](Particles<D>& P, std::size_t i) {
+    if (walls_) (*walls_)(P, i);
+    if (guard_ && (*guard_)(P, i)) {
+#pragma omp atomic
+      ++guarded;
+    }
+  };
+  std::optional<StateFailure> failure;
+  if (shifting_) shifting_->apply(P_, neighbours_, choice.dt);
+  if (wallMotion_) wallMotion_->advance(P_, time_, time_ + choice.dt);
+  std::visit(
+      [&](const auto& integrator) {
+        context_.densityRateApart = std::decay_t<decltype(integrator)>::kDensityRateApart;
+        integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain,
+                           [&] { model_.densityRate(P_, neighbours_); });
+        failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
+      },
+      integrator_);
+  guardActions_ += guarded;
+  if (!failure) model_.afterStep(P_, neighbours_, context_);
+  ++step_;
+  // A step cut to land on end_time or an output time ends exactly there
+  // (time + (t - time) can miss t by one ulp).
+  const std::string_view cut = choice.criterion;
+  if (!timeStep_.adaptive()) time_ = fixedStepTime(step_);
+  else if (cut == "end") time_ = timeStep_.endTime;
+  else if (cut == "output") time_ = landOn;
+  else time_ += choice.dt;
+  return failure;
+}
+
+template <int D>
+Energy Scene<D>::energy() const {
+  Energy e;
+  for (std::size_t i = 0; i < P_.fluidCount(); ++i) e.kinetic += 0.5 * P_.m[i] * P_.v[i].squaredNorm();
+  e.potential = model_.potentialEnergy(P_);
+  return e;
+}
+
+template <int D>
+void Scene<D>::sort() {
+  if (periodic_.any()) {
+    const std::size_t n = P_.size();
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
+    for (std::size_t i = 0; i < n; ++i) periodic_.wrap(P_.x[i]);
+  }
+  grid_.build(P_.x, P_.fluidCount());
+  P_.permute(grid_.order());
+  neighbours_.build(grid_, P_.x, model_.support(), P_.fluidCount());
+}
+
+template <int D>
+void Scene<D>::evaluate() {
+  sort();
+  model_.evaluate(P_, neighbours_, context_);
+}
+
+extern template class Scene<2>;
+extern template class Scene<3>;
 
 }  // namespace sph
