@@ -155,9 +155,19 @@ void addCsv(Particles<D>& P, const std::string& path) {
   if (P.x.size() == before) throw CaseError(where + " has a header line but no particles");
 }
 
-// A .vtp (as sph writes it): positions, velocities, masses, ids and the time.
+// What a .vtp gives besides the fluid's positions, velocities, masses and
+// ids: its wall particles (kind = 1, in file order), and the densities and
+// the surface-tension colour when it has them (an sph snapshot does).
 template <int D>
-void addVtp(InitialState<D>& s, const std::string& path) {
+struct FromFile {
+  Particles<D> walls;
+  std::vector<Real> fluidRho, wallRho, fluidColour;
+};
+
+// A .vtp: any PolyData whose points are the particles (velocity, mass, id,
+// density, kind, colour point arrays and the TimeValue are read when present).
+template <int D>
+void addVtp(InitialState<D>& s, FromFile<D>& file, const std::string& path) {
   VtpParticles f;
   try {
     f = readVtp(path);
@@ -174,8 +184,12 @@ void addVtp(InitialState<D>& s, const std::string& path) {
       x[d] = f.x[i][static_cast<std::size_t>(d)];
       if (f.hasVelocity) v[d] = f.v[i][static_cast<std::size_t>(d)];
     }
-    addParticle(s.particles, x, v, withMass ? f.m[i] : 0);
-    if (!f.id.empty()) s.particles.id.back() = f.id[i];
+    const bool wall = !f.kind.empty() && f.kind[i] == kWall;
+    Particles<D>& to = wall ? file.walls : s.particles;
+    addParticle(to, x, v, withMass ? f.m[i] : 0);
+    if (!f.id.empty()) to.id.back() = f.id[i];
+    if (!f.rho.empty()) (wall ? file.wallRho : file.fluidRho).push_back(f.rho[i]);
+    if (!f.colour.empty() && !wall) file.fluidColour.push_back(f.colour[i]);
   }
   s.massesGiven = withMass;
   s.startTime = f.time;
@@ -231,14 +245,14 @@ void addGenerated(InitialState<D>& s, const CaseConfig& c, const Vec<D>& v0) {
 }
 
 template <int D>
-void addFile(InitialState<D>& s, const CaseConfig& c) {
+void addFile(InitialState<D>& s, FromFile<D>& file, const CaseConfig& c) {
   const std::filesystem::path path(c.particleFile);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw CaseError("particle_file " + c.particleFile + " does not exist or is not a file");
   const std::string ext = path.extension().string();
   if (ext == ".csv") addCsv(s.particles, c.particleFile);
-  else if (ext == ".vtp") addVtp(s, c.particleFile);
+  else if (ext == ".vtp") addVtp(s, file, c.particleFile);
   else throw CaseError("particle_file " + c.particleFile + " must end in .csv or .vtp");
 }
 
@@ -271,8 +285,9 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   InitialState<D> s;
   Particles<D>& P = s.particles;
   const Vec<D> v0 = c.velocity.empty() ? Vec<D>::Zero() : toVec<D>(c.velocity);
+  FromFile<D> file;
   if (c.particleFile.empty()) addGenerated(s, c, v0);
-  else addFile(s, c);
+  else addFile(s, file, c);
   if (P.x.empty())
     throw CaseError("the case has zero particles: give block_min/block_max, disc_center/disc_radius, "
                     "points or particle_file");
@@ -302,10 +317,26 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
     for (Real& m : P.m) m = c.rho0 * std::pow(c.spacing, D);
     s.massesGiven = true;
   }
-  // Wall particles, after the fluid.
-  if (wcsph && c.walls && c.boundary != "reflecting") {
+  // Wall particles, after the fluid: a particle file's own (a snapshot's
+  // walls carry their density, which dynamic walls integrate), else the case's.
+  const bool wallParticles = wcsph && c.walls && c.boundary != "reflecting";
+  const Real mWall = c.rho0 * std::pow(c.spacing, D);
+  if (!file.walls.x.empty()) {
+    const std::string where = "particle_file " + c.particleFile + " holds " + std::to_string(file.walls.x.size()) +
+                              " wall particles (kind = 1)";
+    if (!wallParticles)
+      throw CaseError(where + ", but the case has none (they need model = wcsph, walls = true and boundary = "
+                      "dummy, dynamic or repulsive)");
+    const std::size_t made = wallParticlePositions<D>(c, wallLayersUsed(c)).size();
+    if (file.walls.x.size() != made)
+      throw CaseError(where + ", but the case makes " + std::to_string(made) +
+                      ": its domain, obstacles, spacing or wall layers differ from the run that wrote the file");
+    for (std::size_t i = 0; i < file.walls.x.size(); ++i) {
+      addParticle<D>(P, file.walls.x[i], file.walls.v[i], file.walls.m[i] > 0 ? file.walls.m[i] : mWall);
+      P.id.back() = file.walls.id[i];
+    }
+  } else if (wallParticles) {
     const int layers = wallLayersUsed(c);
-    const Real mWall = c.rho0 * std::pow(c.spacing, D);
     // A sliding lid: the wall particles above the box carry its velocity
     // u_w, which the wall terms see (dummy_adami2012.hpp); none moves.
     const Real top = c.domainMax[static_cast<std::size_t>(D - 1)];
@@ -321,9 +352,15 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   // (compressing densities alone would leave the pressure gradient short by
   // rho/rho0). Summation density and the seed recompute rho anyway.
   std::fill(P.rho.begin(), P.rho.end(), c.rho0);
+  const bool densitiesGiven = !file.fluidRho.empty();  // an sph snapshot: its densities, no hydrostatic start
+  std::copy(file.fluidRho.begin(), file.fluidRho.end(), P.rho.begin());
+  std::copy(file.wallRho.begin(), file.wallRho.end(), P.rho.begin() + static_cast<std::ptrdiff_t>(nFluid));
   // Colour of the surface-tension phase: 1 inside the colour box or the
   // colour ellipse (everywhere when neither is given), 0 outside and for walls.
-  if (wcsph && c.surfaceTension != "none") {
+  if (wcsph && c.surfaceTension != "none" && !file.fluidColour.empty()) {
+    P.colour.assign(P.size(), 0);
+    std::copy(file.fluidColour.begin(), file.fluidColour.end(), P.colour.begin());
+  } else if (wcsph && c.surfaceTension != "none") {
     P.colour.assign(P.size(), 0);
     const bool box = !c.colourBoxMin.empty(), ellipse = !c.colourEllipseCenter.empty();
     for (std::size_t i = 0; i < nFluid; ++i) {
@@ -338,7 +375,7 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
       P.colour[i] = (!box && !ellipse) || inBox || inEllipse ? 1 : 0;
     }
   }
-  if (wcsph && c.hydrostaticStart) {
+  if (wcsph && c.hydrostaticStart && !densitiesGiven) {
     const CaseConfig resolved = withDefaults(c);
     const EquationOfState eos = findMethod(eosMethods(), resolved.eos)->make(resolved);
     // Wall particles take the highest body's surface.

@@ -1,24 +1,30 @@
-// readVtp: particles from a .vtp file, such that no file can crash or hang sph.
+// readVtp: particles from a .vtp file, in any layout VTK and ParaView write
+// (ascii, inline base64 "binary", appended raw or base64; uncompressed or
+// compressed with zlib, LZ4 or LZMA; UInt32 or UInt64 headers; either byte
+// order), such that no file can crash or hang sph.
 //
-// VTK's XML reader trusts the file it reads: a damaged block header or an
-// absurd NumberOfPoints / NumberOfComponents makes it divide by zero, read
-// out of bounds, allocate gigabytes or loop for minutes (found by feeding it
-// broken files). So, before VTK sees the file, checkLayout() reads the small
-// XML header itself (a plain scan of the tags before <AppendedData>) and
-// checks the structure (one PolyData piece with Points) and every DataArray:
-// a known type, 1 to kMaxComponents components, appended raw data, and a
-// block header that lies inside the file and holds exactly the bytes that
-// NumberOfPoints (cells, tuples) times the components need; and the last
-// cell offset, by which VTK sizes the connectivity (an unchecked value that
-// aborts VTK when damaged), must fit that array. Only then does
-// VTK read the file, with its log output captured (its first error becomes
-// our message) and only the point arrays sph uses; last, the values are
-// checked: finite positions and velocities, masses > 0, unique ids,
-// TimeValue finite and >= 0.
+// VTK's vtkXMLPolyDataReader decodes the values. But it trusts the file it
+// reads: a damaged block header or an absurd NumberOfPoints /
+// NumberOfComponents makes it divide by zero, read out of bounds, allocate
+// gigabytes or loop for minutes (found by feeding it broken files). So,
+// before VTK sees the file, checkLayout() reads the XML itself (a plain scan
+// of the tags before <AppendedData>, or of the whole file when the data are
+// inline) and checks the structure (one PolyData piece with Points) and every
+// DataArray: a known type, 1 to kMaxComponents components, and exactly the
+// values that NumberOfPoints (cells, tuples) times the components need:
+// ascii data by counting their words; binary data by their block header
+// (decoded from base64 where they are text), which must lie inside the file
+// or the element and whose (compressed) blocks must too. The last cell
+// offset, by which VTK sizes the connectivity (an unchecked value that
+// aborts VTK when damaged), must fit that array. Only then does VTK read the
+// file, with its log output captured (its first error becomes our message)
+// and only the point arrays sph uses; last, the values are checked: finite
+// positions and velocities, masses > 0, unique ids, TimeValue finite and >= 0.
 #include "sph/io/vtp_io.hpp"
 
 #include <vtkDataArray.h>
 #include <vtkDataArraySelection.h>
+#include <vtkBase64Utilities.h>
 #include <vtkFieldData.h>
 #include <vtkLZ4DataCompressor.h>
 #include <vtkLZMADataCompressor.h>
@@ -40,6 +46,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -51,7 +58,7 @@
 namespace sph {
 namespace {
 
-constexpr std::uint64_t kMaxHeaderBytes = 4u << 20;    // sph's own headers are ~5 kB
+constexpr std::uint64_t kMaxHeaderBytes = 4u << 20;    // read first; sph's own headers are ~5 kB
 constexpr std::uint64_t kMaxCount = 1000000000;        // points, cells or tuples (= kMaxParticles)
 constexpr std::uint64_t kMaxComponents = 64;
 
@@ -80,6 +87,7 @@ struct Element {
   std::map<std::string, std::string> attributes;
   int parent = -1;
   std::vector<int> children;
+  std::size_t textBegin = 0, textEnd = 0;  // its text before the first child or its end tag, trimmed
 
   std::optional<std::string> attribute(const std::string& key) const {
     const auto it = attributes.find(key);
@@ -173,7 +181,13 @@ Header parseHeader(const std::string& s) {
       h.appendedStart = j + 1;
       return h;
     }
-    if (!selfClosing) open.push_back(index);
+    if (!selfClosing) {
+      open.push_back(index);
+      Element& added = h.elements.back();
+      added.textEnd = std::min(s.find('<', j), s.size());
+      added.textBegin = std::min(s.find_first_not_of(" \t\r\n", j), added.textEnd);
+      while (added.textEnd > added.textBegin && isSpace(s[added.textEnd - 1])) --added.textEnd;
+    }
     i = j;
   }
   if (!open.empty())
@@ -236,70 +250,110 @@ struct File {
     for (std::uint64_t b = 0; b < n; ++b) v |= static_cast<std::uint64_t>(p[b]) << (8 * (bigEndian ? n - 1 - b : b));
     return v;
   }
-  std::vector<std::uint64_t> words(std::uint64_t pos, std::uint64_t count) {
-    const auto raw = bytes(pos, count * wordBytes);
+};
+
+// Stored binary data as VTK lays them out: raw bytes in the file from `at`,
+// or base64 text from `at` (appended with encoding = "base64", or inline
+// format = "binary"), read up to `end` (the file's end, or the end of an
+// inline element's text). Offsets below count decoded bytes.
+struct Stream {
+  std::uint64_t at = 0, end = 0;
+  bool base64 = false;
+  std::string what;  // "array \"velocity\"", for messages
+
+  // Decoded bytes the stream can hold at most.
+  std::uint64_t room() const { return base64 ? (end - at) / 4 * 3 : end - at; }
+  Problem truncated(const File& f) const {
+    return Problem(what + " runs past the end of " + (end < f.size ? "its element" : "the file (" + std::to_string(f.size) + " bytes)") +
+                   ": the file is truncated or damaged");
+  }
+  // Decoded bytes [from, from + count); base64 is decoded by VTK in whole
+  // groups of 4 characters (3 bytes).
+  std::vector<unsigned char> read(File& f, std::uint64_t from, std::uint64_t count) const {
+    if (count > room() || from > room() - count) throw truncated(f);
+    if (count == 0) return {};
+    if (!base64) return f.bytes(at + from, count);
+    const std::uint64_t first = from / 3, last = (from + count + 2) / 3;
+    const auto text = f.bytes(at + 4 * first, 4 * (last - first));
+    std::vector<unsigned char> out(static_cast<std::size_t>(3 * (last - first)));
+    if (vtkBase64Utilities::DecodeSafely(text.data(), text.size(), out.data(), out.size()) < from + count - 3 * first)
+      throw Problem(what + " is not valid base64 text (a damaged file?)");
+    out.erase(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(from - 3 * first));
+    out.resize(static_cast<std::size_t>(count));
+    return out;
+  }
+  std::vector<std::uint64_t> words(File& f, std::uint64_t from, std::uint64_t count) const {
+    if (count > room() / f.wordBytes) throw truncated(f);
+    const auto raw = read(f, from, count * f.wordBytes);
     std::vector<std::uint64_t> out(static_cast<std::size_t>(count));
-    for (std::size_t w = 0; w < out.size(); ++w) out[w] = decode(raw.data() + w * wordBytes, wordBytes);
+    for (std::size_t w = 0; w < out.size(); ++w) out[w] = f.decode(raw.data() + w * f.wordBytes, f.wordBytes);
     return out;
   }
 };
 
-// Where an array's data lie: its block header at `pos`, `bytes` of data,
-// and when compressed, blocks of `blockSize` bytes (the last one `lastSize`)
-// stored in `compressed[i]` bytes each, after the header.
+// Where an array's data lie: `bytes` of data, from `dataFrom` in `data`;
+// when compressed, blocks of `blockSize` bytes (the last one `lastSize`)
+// stored in `compressed[i]` bytes each.
 struct Stored {
-  std::uint64_t pos = 0, bytes = 0, blockSize = 0, lastSize = 0;
+  Stream data;
+  std::uint64_t dataFrom = 0, bytes = 0, blockSize = 0, lastSize = 0;
   std::vector<std::uint64_t> compressed;
 };
 
-// The block header at `pos`, after checking that it and the (compressed)
-// blocks lie inside the file.
-Stored stored(File& f, std::uint64_t pos, const std::string& what) {
-  const std::string truncated = what + " runs past the end of the file (" + std::to_string(f.size) +
-                                " bytes): the file is truncated or damaged";
-  if (pos > f.size) throw Problem(truncated);
-  const std::uint64_t room = f.size - pos, w = f.wordBytes;
-  Stored s;
-  s.pos = pos;
+// The block header at the start of `s`, after checking that it and the
+// (compressed) blocks lie inside the stream. Uncompressed: one word (the
+// size) and the data, in one stream. Compressed: the words (blocks, block
+// size, last block size, each block's compressed size), then the blocks;
+// base64 encodes the two as separate streams.
+Stored stored(File& f, const Stream& s) {
+  const std::uint64_t w = f.wordBytes;
+  Stored st;
+  st.data = s;
   if (f.compressor.empty()) {
-    if (room < w) throw Problem(truncated);
-    s.bytes = f.words(pos, 1)[0];
-    if (s.bytes > room - w) throw Problem(truncated);
-    return s;
+    st.bytes = s.words(f, 0, 1)[0];
+    st.dataFrom = w;
+    if (st.bytes > s.room() - w) throw s.truncated(f);
+    return st;
   }
-  if (room < 3 * w) throw Problem(truncated);
-  const auto head = f.words(pos, 3);
+  const auto head = s.words(f, 0, 3);
   const std::uint64_t blocks = head[0];
-  s.blockSize = head[1];
-  if (blocks > (room - 3 * w) / w) throw Problem(truncated);
-  std::uint64_t left = room - (3 + blocks) * w;
-  s.compressed = f.words(pos + 3 * w, blocks);
-  for (std::uint64_t size : s.compressed) {
-    if (size > left) throw Problem(truncated);
+  st.blockSize = head[1];
+  if (blocks > s.room() / w - 3) throw s.truncated(f);
+  st.compressed = s.words(f, 3 * w, blocks);
+  st.dataFrom = (3 + blocks) * w;
+  if (s.base64) {
+    st.data.at += (st.dataFrom + 2) / 3 * 4;
+    st.dataFrom = 0;
+    if (st.data.at > st.data.end) throw s.truncated(f);
+  }
+  std::uint64_t left = st.data.room() - st.dataFrom;
+  for (std::uint64_t size : st.compressed) {
+    if (size > left) throw s.truncated(f);
     left -= size;
   }
-  if (blocks == 0) return s;
-  if (s.blockSize == 0 || head[2] > s.blockSize)
-    throw Problem(what + " has a damaged compression header (block size " + std::to_string(s.blockSize) +
+  if (blocks == 0) return st;
+  if (st.blockSize == 0 || head[2] > st.blockSize)
+    throw Problem(s.what + " has a damaged compression header (block size " + std::to_string(st.blockSize) +
                   ", last block " + std::to_string(head[2]) + ")");
-  s.lastSize = head[2] > 0 ? head[2] : s.blockSize;
-  if (blocks - 1 > (std::numeric_limits<std::uint64_t>::max() - s.lastSize) / s.blockSize)
-    throw Problem(what + " has a damaged compression header (" + std::to_string(blocks) + " blocks)");
-  s.bytes = (blocks - 1) * s.blockSize + s.lastSize;
-  return s;
+  st.lastSize = head[2] > 0 ? head[2] : st.blockSize;
+  if (blocks - 1 > (std::numeric_limits<std::uint64_t>::max() - st.lastSize) / st.blockSize)
+    throw Problem(s.what + " has a damaged compression header (" + std::to_string(blocks) + " blocks)");
+  st.bytes = (blocks - 1) * st.blockSize + st.lastSize;
+  return st;
 }
 
 // The last value of an array of unsigned integers of `size` bytes (as
 // stored; a signed negative value reads as a huge one).
-std::uint64_t lastValue(File& f, const Stored& s, std::uint64_t size, const std::string& what) {
+std::uint64_t lastValue(File& f, const Stored& s, std::uint64_t size) {
+  const std::string& what = s.data.what;
   if (s.bytes < size) throw Problem(what + " is empty");
-  if (f.compressor.empty()) return f.decode(f.bytes(s.pos + f.wordBytes + s.bytes - size, size).data(), size);
+  if (f.compressor.empty()) return f.decode(s.data.read(f, s.dataFrom + s.bytes - size, size).data(), size);
   if (s.blockSize % size != 0)
     throw Problem(what + " has a damaged compression header (block size " + std::to_string(s.blockSize) + ")");
   const std::size_t last = s.compressed.size() - 1;
-  std::uint64_t at = s.pos + (3 + s.compressed.size()) * f.wordBytes;
+  std::uint64_t at = s.dataFrom;
   for (std::size_t b = 0; b < last; ++b) at += s.compressed[b];
-  const auto packed = f.bytes(at, s.compressed[last]);
+  const auto packed = s.data.read(f, at, s.compressed[last]);
   std::vector<unsigned char> block(static_cast<std::size_t>(s.lastSize));
   vtkSmartPointer<vtkDataCompressor> c;
   if (f.compressor == "vtkZLibDataCompressor") c = vtkSmartPointer<vtkZLibDataCompressor>::New();
@@ -308,6 +362,22 @@ std::uint64_t lastValue(File& f, const Stored& s, std::uint64_t size, const std:
   if (c->Uncompress(packed.data(), packed.size(), block.data(), block.size()) != block.size())
     throw Problem(what + ": its data cannot be uncompressed (a damaged file?)");
   return f.decode(block.data() + block.size() - size, size);
+}
+
+// ASCII data (format = "ascii"): the values are the words of the element's
+// text, which VTK parses itself; here they are counted, and the last one
+// read when it is a cell offset.
+std::uint64_t countWords(const std::string& text, std::size_t begin, std::size_t end) {
+  std::uint64_t n = 0;
+  for (std::size_t i = begin; i < end; ++i)
+    if (!isSpace(text[i]) && (i == begin || isSpace(text[i - 1]))) ++n;
+  return n;
+}
+std::uint64_t lastWord(const std::string& text, std::size_t begin, std::size_t end, const std::string& what) {
+  std::size_t from = end;
+  while (from > begin && !isSpace(text[from - 1])) --from;
+  if (from == end) throw Problem(what + " is empty");
+  return parseCount(text.substr(from, end - from), what + ": its last value", std::numeric_limits<std::uint64_t>::max() / 10);
 }
 
 struct Layout {
@@ -340,16 +410,19 @@ Layout checkLayout(const std::string& path) {
   if (f.size == 0) throw Problem("is empty");
   f.in.open(path, std::ios::binary);
   if (!f.in) throw Problem("cannot be opened");
+  // The XML: up to <AppendedData>, else (data inline) the whole file.
   std::string text(static_cast<std::size_t>(std::min(f.size, kMaxHeaderBytes)), '\0');
   f.in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (!f.in) throw Problem("cannot be read");
+  if (text.size() < f.size && text.find("<AppendedData") == std::string::npos) {
+    text.resize(static_cast<std::size_t>(f.size));
+    f.in.read(text.data() + kMaxHeaderBytes, static_cast<std::streamsize>(f.size - kMaxHeaderBytes));
+    if (!f.in) throw Problem("cannot be read");
+  }
 
   const Header h = parseHeader(text);
   if (h.elements.empty() || h.elements[0].name != "VTKFile")
     throw Problem("is not a VTK XML file (it has no <VTKFile> element)");
-  if (!h.hasAppendedData && f.size > kMaxHeaderBytes)
-    throw Problem("has no <AppendedData> in its first " + std::to_string(kMaxHeaderBytes) +
-                  " bytes (sph reads .vtp files with appended data, as sph and ParaView write them)");
   const Element& root = h.elements[0];
   const std::string type = root.attribute("type").value_or("");
   if (type != "PolyData")
@@ -387,8 +460,7 @@ Layout checkLayout(const std::string& path) {
   }
 
   struct CellArrays {
-    std::optional<Stored> offsets;
-    std::uint64_t offsetBytes = 0;
+    std::function<std::uint64_t()> lastOffset;
     std::optional<std::uint64_t> connectivity;  // values
   };
   std::map<std::string, CellArrays> cellArrays;
@@ -407,15 +479,29 @@ Layout checkLayout(const std::string& path) {
     const std::uint64_t components =
         e.attribute("NumberOfComponents") ? parseCount(e.attribute("NumberOfComponents"), what + ": NumberOfComponents", kMaxComponents) : 1;
     if (components == 0) throw Problem(what + ": NumberOfComponents = 0: it must be 1 to " + std::to_string(kMaxComponents));
+    // How many values are stored, and for binary data where.
     const std::string format = e.attribute("format").value_or("");
-    if (format != "appended")
-      throw Problem(what + " is stored as format = \"" + printable(format) +
-                    "\": sph reads appended binary data (as sph and ParaView write them)");
-    if (!h.hasAppendedData || h.appendedEncoding != "raw")
-      throw Problem("its appended data are not raw binary (encoding = \"" + printable(h.appendedEncoding) +
-                    "\"): sph reads encoding = \"raw\", as sph and ParaView write them");
-    const std::uint64_t offset = parseCount(e.attribute("offset"), what + ": offset", f.size);
-    const Stored data = stored(f, h.appendedStart + offset, what);
+    std::optional<Stored> data;
+    std::uint64_t values = 0;
+    if (format == "ascii") {
+      values = countWords(text, e.textBegin, e.textEnd);
+    } else if (format == "binary") {
+      data = stored(f, Stream{e.textBegin, e.textEnd, true, what});
+    } else if (format == "appended") {
+      if (!h.hasAppendedData) throw Problem(what + " has format = appended, but the file has no <AppendedData>");
+      if (h.appendedEncoding != "raw" && h.appendedEncoding != "base64")
+        throw Problem("its <AppendedData> has encoding = \"" + printable(h.appendedEncoding) + "\": it must be raw or base64");
+      const std::uint64_t offset = parseCount(e.attribute("offset"), what + ": offset", f.size);
+      const Stream s{h.appendedStart + offset, f.size, h.appendedEncoding == "base64", what};
+      if (s.at > s.end) throw s.truncated(f);
+      data = stored(f, s);
+    } else {
+      throw Problem(what + " has format = \"" + printable(format) + "\": it must be ascii, binary or appended");
+    }
+    if (data) {
+      if (data->bytes % bytes != 0) throw Problem(what + " holds " + std::to_string(data->bytes) + " bytes, not whole values");
+      values = data->bytes / bytes;
+    }
 
     // What the counts in the header say the array must hold.
     const std::string parent = e.parent >= 0 ? h.elements[static_cast<std::size_t>(e.parent)].name : "";
@@ -434,11 +520,10 @@ Layout checkLayout(const std::string& path) {
       tuples = cells[parent];
       because = "NumberOf" + parent + " = " + std::to_string(*tuples);
     }
-    if (tuples && data.bytes != *tuples * components * bytes)
-      throw Problem(what + " holds " + std::to_string(data.bytes) + " bytes, but " + because + " with " +
-                    std::to_string(components) + " " + arrayType + " components needs " +
-                    std::to_string(*tuples * components * bytes) + " (a damaged file?)");
-    if (data.bytes % bytes != 0) throw Problem(what + " holds " + std::to_string(data.bytes) + " bytes, not whole values");
+    if (tuples && values != *tuples * components)
+      throw Problem(what + " holds " + std::to_string(values) + " values, but " + because + " with " +
+                    std::to_string(components) + " components needs " + std::to_string(*tuples * components) +
+                    " (a damaged file?)");
 
     // The arrays sph uses.
     auto require = [&](bool ok, const std::string& allowed) {
@@ -474,8 +559,9 @@ Layout checkLayout(const std::string& path) {
     if (cells.count(parent) && (name == "offsets" || name == "connectivity")) {
       require(!isFloatType(arrayType) && components == 1, "an integer type and 1 component");
       auto& c = cellArrays[parent];
-      if (name == "offsets") c.offsets = data, c.offsetBytes = bytes;
-      else c.connectivity = data.bytes / bytes;
+      if (name != "offsets") c.connectivity = values;
+      else if (data) c.lastOffset = [&f, stored = *data, bytes] { return lastValue(f, stored, bytes); };
+      else c.lastOffset = [&text, &e, what] { return lastWord(text, e.textBegin, e.textEnd, what); };
     }
   }
 
@@ -483,9 +569,9 @@ Layout checkLayout(const std::string& path) {
   // that must not exceed what the connectivity array holds.
   for (const auto& [kind, count] : cells) {
     const CellArrays& c = cellArrays[kind];
-    if (count == 0 || !c.offsets || !c.connectivity) continue;  // VTK reports missing arrays
+    if (count == 0 || !c.lastOffset || !c.connectivity) continue;  // VTK reports missing arrays
     const std::string what = "the cell offsets of <" + kind + ">";
-    const std::uint64_t last = lastValue(f, *c.offsets, c.offsetBytes, what);
+    const std::uint64_t last = c.lastOffset();
     if (last > *c.connectivity)
       throw Problem(what + " end at " + std::to_string(last) + ", but its connectivity holds " +
                     std::to_string(*c.connectivity) + " values (a damaged file?)");

@@ -1,7 +1,8 @@
 // Broken particle files are refused, never crash or hang sph, and failed
 // writes leave no temporaries.
 //
-// Each broken file is made here from a good .vtp written by `sph run` itself:
+// Each broken file is made here from a good .vtp written by `sph run` itself
+// (or rewritten by VTK in another layout: ascii, inline or appended base64):
 // truncated, bytes flipped in the header and in the appended data, header
 // values replaced (NumberOfPoints 99999999, NumberOfComponents 2^64-1, ...),
 // values made bad through VTK (mass -1, TimeValue nan, repeated ids, ...),
@@ -162,6 +163,20 @@ BOOST_AUTO_TEST_CASE(the_good_file_and_its_rewrite_run) {
 namespace {
 void uncompressed(vtkXMLPolyDataWriter* w) { w->SetCompressorTypeToNone(); }
 void lz4(vtkXMLPolyDataWriter* w) { w->SetCompressorTypeToLZ4(); }
+void ascii(vtkXMLPolyDataWriter* w) { w->SetDataModeToAscii(); }
+void inlineZlib(vtkXMLPolyDataWriter* w) { w->SetDataModeToBinary(); }
+void inlineRaw(vtkXMLPolyDataWriter* w) {
+  w->SetDataModeToBinary();
+  w->SetCompressorTypeToNone();
+}
+void base64(vtkXMLPolyDataWriter* w) {
+  w->EncodeAppendedDataOn();
+  w->SetCompressorTypeToNone();
+}
+void base64Lz4(vtkXMLPolyDataWriter* w) {
+  w->EncodeAppendedDataOn();
+  w->SetCompressorTypeToLZ4();
+}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(other_layouts_vtk_writes_run) {
@@ -174,6 +189,15 @@ BOOST_AUTO_TEST_CASE(other_layouts_vtk_writes_run) {
          w->SetByteOrderToBigEndian();
        }},
       {"lz4.vtp", lz4},
+      {"ascii_layout.vtp", ascii},
+      {"inline_zlib.vtp", inlineZlib},
+      {"inline_raw_u64.vtp",
+       [](vtkXMLPolyDataWriter* w) {
+         inlineRaw(w);
+         w->SetHeaderTypeToUInt64();
+       }},
+      {"base64_layout.vtp", base64},
+      {"base64_lz4.vtp", base64Lz4},
       {"lzma.vtp", [](vtkXMLPolyDataWriter* w) { w->SetCompressorTypeToLZMA(); }},
       {"zlib_u64_big.vtp", [](vtkXMLPolyDataWriter* w) {
          w->SetHeaderTypeToUInt64();
@@ -262,8 +286,12 @@ BOOST_AUTO_TEST_CASE(header_values_out_of_range) {
                 "Float77");
   expectRefused(writeBytes("ascii.vtp", replaced("NumberOfComponents=\"3\" format=\"appended\"",
                                                  "NumberOfComponents=\"3\" format=\"ascii\"")),
-                "format");
-  expectRefused(writeBytes("base64.vtp", replaced("encoding=\"raw\"", "encoding=\"base64\"")), "raw");
+                "holds 0 values");
+  expectRefused(writeBytes("format.vtp", replaced("NumberOfComponents=\"3\" format=\"appended\"",
+                                                  "NumberOfComponents=\"3\" format=\"hex\"")),
+                "it must be ascii, binary or appended");
+  expectRefused(writeBytes("base64.vtp", replaced("encoding=\"raw\"", "encoding=\"base64\"")), "base64");
+  expectRefused(writeBytes("encoding.vtp", replaced("encoding=\"raw\"", "encoding=\"hex\"")), "raw or base64");
   expectRefused(writeBytes("far_offset.vtp", [] {
                   std::string s = goodVtp();
                   const auto at = s.find("offset=\"", s.find("Name=\"Points\"")) + 8;
@@ -272,6 +300,51 @@ BOOST_AUTO_TEST_CASE(header_values_out_of_range) {
                 "Points");
   expectRefused(writeBytes("compressor.vtp", replaced("vtkZLibDataCompressor", "vtkFooCompressor")), "compressor");
   expectRefused(writeBytes("header_type.vtp", replaced("header_type=\"UInt32\"", "header_type=\"UInt16\"")), "header_type");
+}
+
+// The text layouts: ascii values are counted, base64 block headers decoded
+// and checked against the element or the file, as raw ones are.
+BOOST_AUTO_TEST_CASE(damaged_text_layouts) {
+  const std::string text = readBytes(rewritten("ascii_for_damage.vtp", [](vtkPolyData*) {}, ascii));
+  auto edited = [](std::string s, const std::string& from, const std::string& to) {
+    const auto at = s.find(from);
+    BOOST_TEST_REQUIRE(at != std::string::npos, "no " << from);
+    return s.replace(at, from.size(), to);
+  };
+  // One value fewer in the points, a huge NumberOfPoints, a last cell offset
+  // past the connectivity, a word that is not a number where VTK reads it.
+  const auto points = text.find('>', text.find("Name=\"Points\"")) + 1;
+  const auto firstValue = text.find_first_not_of(" \n", points);
+  std::string oneShort = text;
+  oneShort.erase(firstValue, text.find(' ', firstValue) - firstValue);
+  expectRefused(writeBytes("ascii_one_short.vtp", oneShort), "holds 11 values");
+  expectRefused(writeBytes("ascii_huge_count.vtp", edited(text, "NumberOfPoints=\"4\"", "NumberOfPoints=\"99999999\"")),
+                "NumberOfPoints");
+  const auto offsets = text.find('>', text.find("Name=\"offsets\"")) + 1;
+  std::string hugeOffset = text;
+  hugeOffset.insert(text.find('<', offsets), " 99999999999 ");
+  expectRefused(writeBytes("ascii_huge_offset.vtp", edited(hugeOffset, "NumberOfVerts=\"4\"", "NumberOfVerts=\"5\"")),
+                "cell offsets of <Verts>");
+  std::string word = text;
+  word.replace(firstValue, 1, "x");
+  expectRefused(writeBytes("ascii_word.vtp", word), "particle_file");
+
+  // Inline base64: the Points text cut short, its size word made huge.
+  const std::string inl = readBytes(rewritten("inline_for_damage.vtp", [](vtkPolyData*) {}, inlineRaw));
+  const auto pointsText = inl.find_first_not_of(" \n", inl.find('>', inl.find("Name=\"Points\"")) + 1);
+  std::string cut = inl;
+  cut.erase(pointsText + 40, inl.find('<', pointsText) - pointsText - 40);
+  expectRefused(writeBytes("inline_cut.vtp", cut), "runs past the end of its element");
+  std::string hugeSize = inl;
+  hugeSize.replace(pointsText, 8, "/////w==");  // size word 0x00ffffff
+  expectRefused(writeBytes("inline_huge_size.vtp", hugeSize), "Points");
+  std::string notBase64 = inl;
+  notBase64[pointsText + 2] = '*';  // in the size word, which sph decodes (VTK decodes the values)
+  expectRefused(writeBytes("inline_not_base64.vtp", notBase64), "not valid base64");
+
+  // Appended base64, cut inside the data.
+  const std::string b64 = readBytes(rewritten("base64_for_damage.vtp", [](vtkPolyData*) {}, base64Lz4));
+  expectRefused(writeBytes("base64_cut.vtp", b64.substr(0, b64.size() - 200)), "truncated");
 }
 
 BOOST_AUTO_TEST_CASE(structure) {
@@ -376,6 +449,18 @@ BOOST_AUTO_TEST_CASE(random_damage_to_unchecked_data_never_crashes) {
                                      {"lz4.vtp", lz4}}) {
     const std::string good = readBytes(rewritten(name, [](vtkPolyData*) {}, layout));
     damageRandomly(good, appendedStart(good), 60, 17, false);
+  }
+}
+
+// Text layouts: damage anywhere (header or data) in ascii, inline base64
+// and appended base64 files.
+BOOST_AUTO_TEST_CASE(random_damage_to_text_layouts_never_crashes) {
+  for (const auto& [name, layout] : {std::pair<std::string, std::function<void(vtkXMLPolyDataWriter*)>>{"ascii.vtp", ascii},
+                                     {"inline.vtp", inlineZlib},
+                                     {"inline_raw.vtp", inlineRaw},
+                                     {"base64.vtp", base64}}) {
+    const std::string good = readBytes(rewritten("random_" + name, [](vtkPolyData*) {}, layout));
+    damageRandomly(good, 0, 40, 23, false);
   }
 }
 

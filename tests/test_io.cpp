@@ -13,8 +13,42 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <cstdlib>
 
 using namespace sph;
+
+namespace {
+
+// A snapshot of the default dam break after 2 steps (fluid and dummy walls,
+// continuity density: velocities, densities and rates all non-trivial).
+std::string damBreakSnapshot(const std::filesystem::path& dir) {
+  const auto r = test::runSph({"run", test::caseFile("dam_break"), "--output", (dir / "run").string(), "--end_time",
+                               "0.0001", "--output_every", "2", "--threads", "1", "--no-progress"});
+  BOOST_TEST_REQUIRE(r.exitCode == 0, r.output);
+  return (dir / "run" / "dam_break_00001.vtp").string();
+}
+
+// Every value sph reads, bit for bit.
+void expectSame(const VtpParticles& a, const VtpParticles& b, const std::string& what) {
+  BOOST_TEST_CONTEXT(what) {
+    BOOST_TEST_REQUIRE(a.x.size() == b.x.size());
+    BOOST_TEST(a.x == b.x);
+    BOOST_TEST(a.hasVelocity == b.hasVelocity);
+    BOOST_TEST(a.v == b.v);
+    BOOST_TEST(a.m == b.m);
+    BOOST_TEST(a.id == b.id);
+    BOOST_TEST(a.rho == b.rho);
+    BOOST_TEST(a.drho == b.drho);
+    BOOST_TEST(a.a == b.a);
+    BOOST_TEST(a.kind == b.kind);
+    BOOST_TEST(a.time == b.time);
+    BOOST_TEST(a.step == b.step);
+  }
+}
+
+}  // namespace
 
 BOOST_AUTO_TEST_SUITE(io)
 
@@ -122,6 +156,43 @@ BOOST_AUTO_TEST_CASE(a_run_continues_from_a_vtp) {
   }
 }
 
+// Every layout VTK's XML writer gives a .vtp (ParaView's SaveData drives the
+// same writer; the paraview_files suite below checks files pvpython saved):
+// ascii, inline base64 ("binary"), appended raw and base64; no, zlib, LZ4 or
+// LZMA compression; UInt32 or UInt64 block headers. readVtp reads the same
+// values from each as from sph's own snapshot, bit for bit (VTK writes ascii
+// doubles with 17 significant digits, which read back exactly).
+BOOST_AUTO_TEST_CASE(every_layout_vtk_writes_is_read_the_same) {
+  const auto dir = test::scratchDir("vtp_layouts");
+  const std::string original = damBreakSnapshot(dir);
+  const VtpParticles expected = readVtp(original);
+  BOOST_TEST_REQUIRE(!expected.kind.empty());
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(original.c_str());
+  reader->Update();
+  int files = 0;
+  for (int mode : {vtkXMLWriter::Ascii, vtkXMLWriter::Binary, vtkXMLWriter::Appended})
+    for (bool encode : {false, true})
+      for (int compressor : {vtkXMLWriter::NONE, vtkXMLWriter::ZLIB, vtkXMLWriter::LZ4, vtkXMLWriter::LZMA})
+        for (int header : {vtkXMLWriter::UInt32, vtkXMLWriter::UInt64}) {
+          if (mode != vtkXMLWriter::Appended && encode) continue;  // encoding applies to appended data
+          const std::string name = "mode" + std::to_string(mode) + "_encode" + std::to_string(encode) + "_compressor" +
+                                   std::to_string(compressor) + "_header" + std::to_string(header) + ".vtp";
+          const std::string path = (dir / name).string();
+          vtkNew<vtkXMLPolyDataWriter> writer;
+          writer->SetFileName(path.c_str());
+          writer->SetInputConnection(reader->GetOutputPort());
+          writer->SetDataMode(mode);
+          writer->SetEncodeAppendedData(encode);
+          writer->SetCompressorType(compressor);
+          writer->SetHeaderType(header);
+          BOOST_TEST_REQUIRE(writer->Write() == 1);
+          expectSame(readVtp(path), expected, name);
+          ++files;
+        }
+  BOOST_TEST(files == 32);
+}
+
 BOOST_AUTO_TEST_CASE(csv_particle_file_is_read) {
   const auto dir = test::scratchDir("csv");
   {
@@ -135,6 +206,30 @@ BOOST_AUTO_TEST_CASE(csv_particle_file_is_read) {
   BOOST_TEST(s.particles.x[1][1] == 0.3);
   BOOST_TEST(s.particles.v[1][1] == -1.0);
   BOOST_TEST(s.particles.v[0][0] == 1.0);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+// Particle files saved by ParaView itself: pvpython's SaveData(..., DataMode
+// = Ascii | Binary | Appended, EncodeAppendedData = 0 | 1, CompressorType =
+// None | ZLib | LZ4) of an sph snapshot, made by tests/paraview_saved_files.sh
+// (ctest paraview.saved_particle_files, label paraview), which names the
+// folder in SPH_PARAVIEW_FILES: sph reads each and gets the values of the
+// snapshot, bit for bit. Off by default (it needs pvpython).
+BOOST_AUTO_TEST_SUITE(paraview_files, *boost::unit_test::disabled())
+
+BOOST_AUTO_TEST_CASE(every_data_mode_paraview_saves_is_read_the_same) {
+  const char* folder = std::getenv("SPH_PARAVIEW_FILES");
+  BOOST_TEST_REQUIRE(folder != nullptr, "SPH_PARAVIEW_FILES is not set (run ctest -R paraview.saved_particle_files)");
+  const std::filesystem::path dir(folder);
+  const VtpParticles expected = readVtp((dir / "original.vtp").string());
+  BOOST_TEST_REQUIRE(!expected.kind.empty());
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "saved")) {
+    expectSame(readVtp(entry.path().string()), expected, entry.path().filename().string());
+    ++files;
+  }
+  BOOST_TEST(files == 10);  // 1 ascii + 3 compressors x (binary, appended raw, appended base64)
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -6,7 +6,8 @@
 // min + (i + 1/2) dx. The disc/ball holds the lattice points c + i dx with
 // |x - c| <= R. A particle_file, when given, replaces the generators (so a
 // case continues from any of its own snapshots with one extra flag); ids,
-// masses and the time come from a .vtp when it has them.
+// masses, densities and the time come from a .vtp when it has them, and its
+// wall particles (kind = 1) replace the case's (docs/running.md).
 #pragma once
 
 #include "sph/case_config.hpp"

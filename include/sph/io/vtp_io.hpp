@@ -45,8 +45,9 @@ struct VtpParticles {
   std::vector<Real> colour;      // surface tension: the particles' phase colour
 };
 
-// Reads the particles of a .vtp (src/vtp_read.cpp): one PolyData piece with
-// appended raw data, as sph and ParaView write it. The header is checked
+// Reads the particles of a .vtp (src/vtp_read.cpp): one PolyData piece, in
+// any data mode VTK and ParaView write (ascii, binary, appended raw or
+// base64, compressed or not), decoded by VTK. The layout is checked
 // against the file before VTK reads it, VTK prints nothing, and the values
 // are checked (finite positions and velocities, masses > 0, unique ids,
 // TimeValue finite and >= 0). Throws std::runtime_error, one line starting
