@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders the pictures of the shipped cases in docs/images/ (480x480 PNGs),
-# with the same one-liners as paraview/README.md.
+# with the same one-liners as docs/paraview.md.
 #
 #   paraview/make_doc_images.sh            # uses build/sph, writes runs/<case>
 #   SPH=build-pv/sph RUNS=/tmp/runs paraview/make_doc_images.sh

@@ -93,7 +93,7 @@ def parse_args(argv):
         prog="render.py",
         description=__doc__.split("\n\n")[0] + "\n\n    " + ONE_LINER,
         formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog="See paraview/README.md for more.")
+        epilog="See docs/paraview.md for more.")
     ap.add_argument("run", metavar="RUN_DIR_OR_PVD",
                     help="sph output folder (holding one .pvd) or a .pvd file")
     ap.add_argument("--state", metavar="FILE.pvsm",
