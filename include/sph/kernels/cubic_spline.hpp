@@ -20,6 +20,7 @@
 // gradient with respect to x_i), the zero vector at r = 0.
 #pragma once
 
+#include "sph/kernels/radial_gradient.hpp"
 #include "sph/types.hpp"
 
 #include <algorithm>
@@ -28,7 +29,7 @@
 namespace sph {
 
 template <int D>
-struct CubicSpline {
+struct CubicSpline : RadialGradient<CubicSpline<D>, D> {
   static_assert(D == 2 || D == 3, "CubicSpline is defined for D = 2 and 3");
   static constexpr int dim = D;
   static constexpr const char* name = "cubic_spline";
@@ -60,11 +61,6 @@ struct CubicSpline {
     if (q < 1) return sigmaGrad_ * q * (Real(2.25) * q - 3);
     const Real t = std::max(2 - q, Real(0));
     return -sigmaGrad_ * Real(0.75) * t * t;
-  }
-
-  Vec<D> gradW(const Vec<D>& rij, Real r) const {
-    if (r <= 0) return Vec<D>::Zero();
-    return (dWdr(r) / r) * rij;
   }
 
   Real laplacianW(Real r) const {

@@ -26,6 +26,7 @@
 // gradient with respect to x_i), the zero vector at r = 0.
 #pragma once
 
+#include "sph/kernels/radial_gradient.hpp"
 #include "sph/types.hpp"
 
 #include <cmath>
@@ -33,7 +34,7 @@
 namespace sph {
 
 template <int D>
-struct Gaussian {
+struct Gaussian : RadialGradient<Gaussian<D>, D> {
   static_assert(D == 2 || D == 3, "Gaussian is defined for D = 2 and 3");
   static constexpr int dim = D;
   static constexpr const char* name = "gaussian";
@@ -59,11 +60,6 @@ struct Gaussian {
   Real dWdr(Real r) const {
     const Real q = r * invH_;
     return r < support_ ? -2 * sigmaGrad_ * q * std::exp(-q * q) : 0;
-  }
-
-  Vec<D> gradW(const Vec<D>& rij, Real r) const {
-    if (r <= 0) return Vec<D>::Zero();
-    return (dWdr(r) / r) * rij;
   }
 
   Real laplacianW(Real r) const {

@@ -36,6 +36,7 @@
 // gradient of W_s with respect to x_i), the zero vector at r = 0.
 #pragma once
 
+#include "sph/kernels/radial_gradient.hpp"
 #include "sph/types.hpp"
 
 #include <algorithm>
@@ -44,7 +45,7 @@
 namespace sph {
 
 template <int D>
-struct Muller {
+struct Muller : RadialGradient<Muller<D>, D> {
   static_assert(D == 2 || D == 3, "Muller is defined for D = 2 and 3");
   static constexpr int dim = D;
   static constexpr const char* name = "muller";
@@ -73,11 +74,6 @@ struct Muller {
     if (r >= h_) return 0;
     const Real s = h_ - r;
     return -3 * cSpiky_ * s * s;
-  }
-
-  Vec<D> gradW(const Vec<D>& rij, Real r) const {
-    if (r <= 0) return Vec<D>::Zero();
-    return (dWdr(r) / r) * rij;
   }
 
   // Laplacian of the viscosity kernel.

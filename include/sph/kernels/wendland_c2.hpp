@@ -16,6 +16,7 @@
 // gradient with respect to x_i), the zero vector at r = 0.
 #pragma once
 
+#include "sph/kernels/radial_gradient.hpp"
 #include "sph/types.hpp"
 
 #include <algorithm>
@@ -24,7 +25,7 @@
 namespace sph {
 
 template <int D>
-struct WendlandC2 {
+struct WendlandC2 : RadialGradient<WendlandC2<D>, D> {
   static_assert(D == 2 || D == 3, "WendlandC2 is defined for D = 2 and 3");
   static constexpr int dim = D;
   static constexpr const char* name = "wendland_c2";
@@ -54,11 +55,6 @@ struct WendlandC2 {
     const Real q = r * invH_;
     const Real t = std::max(1 - Real(0.5) * q, Real(0));
     return -5 * sigmaGrad_ * q * t * t * t;
-  }
-
-  Vec<D> gradW(const Vec<D>& rij, Real r) const {
-    if (r <= 0) return Vec<D>::Zero();
-    return (dWdr(r) / r) * rij;
   }
 
   Real laplacianW(Real r) const {
