@@ -12,7 +12,7 @@
 // (no question of which side L_i multiplies) and ~ identity inside a full
 // support. This pass computes L_i into the field cspmL before the forces;
 // the pair loop hands each fluid pair gradWC = L_i grad_i W (CspmCorrection
-// below), which the pressure term (cspm_pressure.hpp) uses; the continuity
+// below), which the pressure term (CspmPressure in symmetric_pressure.hpp) uses; the continuity
 // term, viscosity and density diffusion keep grad W. (The continuity term
 // used L_i grad W until 2026-12: the density then stopped following the
 // particles' packing and the dam break's surge tongue crowded until a

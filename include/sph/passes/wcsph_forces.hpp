@@ -31,7 +31,6 @@
 #include "sph/terms/artificial_pressure.hpp"
 #include "sph/terms/body_forces.hpp"
 #include "sph/terms/continuity_density.hpp"
-#include "sph/terms/cspm_pressure.hpp"
 #include "sph/terms/density_diffusion.hpp"
 #include "sph/terms/laplacian_viscosity.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
