@@ -5,6 +5,7 @@
 // know the particles); and the particle count they give, bounded before
 // anything is allocated.
 #include "sph/case_config.hpp"
+#include "sph/io/number_format.hpp"
 
 #include <cmath>
 #include <string>
@@ -12,12 +13,6 @@
 namespace sph {
 
 namespace {
-
-std::string fmtReal(double x) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.6g", x);
-  return s;
-}
 
 void requireMultiple(const char* key, const std::vector<Real>& v, std::size_t per, const char* what) {
   if (v.size() % per != 0)
@@ -95,7 +90,7 @@ void validateBodies(const CaseConfig& c) {
   for (std::size_t k = 0; k < discs; ++k) {
     Body b{"disc " + std::to_string(k + 1), true, {}, {}, c.discRadius[k]};
     for (std::size_t d = 0; d < D; ++d) b.lo.push_back(c.discCenter[k * D + d]);
-    if (!(b.radius > 0)) throw CaseError("disc_radius = " + fmtReal(b.radius) + " is out of range: it must be > 0");
+    if (!(b.radius > 0)) throw CaseError("disc_radius = " + significant(b.radius) + " is out of range: it must be > 0");
     bodies.push_back(b);
   }
   for (std::size_t a = 0; a < bodies.size(); ++a)
@@ -118,7 +113,7 @@ void validateBodies(const CaseConfig& c) {
                           " (obstacle_min/obstacle_max): fluid and solid cannot share space");
     }
   if (!bodies.empty() && !(c.spacing > 0))
-    throw CaseError("spacing = " + fmtReal(c.spacing) + " is out of range: blocks and discs need spacing > 0");
+    throw CaseError("spacing = " + significant(c.spacing) + " is out of range: blocks and discs need spacing > 0");
   if (c.points.size() % D != 0)
     throw CaseError("points has " + std::to_string(c.points.size()) + " values: it needs a multiple of " +
                     std::to_string(D) + " (x y" + (D == 3 ? " z" : "") + " per point)");
@@ -134,8 +129,8 @@ void validateBodies(const CaseConfig& c) {
   }
   for (long n : c.starParticles) count += static_cast<double>(n), countKey = "star_particles";
   if (count > kMaxParticles)
-    throw CaseError(std::string(countKey) + " gives about " + fmtReal(count) + " particles: at most " +
-                    fmtReal(kMaxParticles) + " are allowed");
+    throw CaseError(std::string(countKey) + " gives about " + significant(count) + " particles: at most " +
+                    significant(kMaxParticles) + " are allowed");
 }
 
 }  // namespace sph

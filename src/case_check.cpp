@@ -11,6 +11,7 @@
 //              at 1.3, 52-70% from 1.5); Wendland C2 stays clean to 2.0;
 //   Mach       density varies as Ma^2: Ma <= 0.1 keeps it within 1%;
 //   explicit Euler gains energy every step whatever dt.
+#include "sph/io/number_format.hpp"
 #include "sph/case_check.hpp"
 
 #include "sph/case_file.hpp"
@@ -32,11 +33,7 @@
 namespace sph {
 namespace {
 
-std::string fmt(Real x, int digits = 3) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.*g", digits, x);
-  return s;
-}
+std::string fmt(Real x, int digits = 3) { return significant(x, digits); }
 
 }  // namespace
 

@@ -1,24 +1,18 @@
 #include "sph/case_config.hpp"
 
 #include "sph/case_keys.hpp"
+#include "sph/io/number_format.hpp"
 
 #include <cmath>
 #include <initializer_list>
-#include <sstream>
 #include <utility>
 
 namespace sph {
 namespace {
 
-std::string fmt(Real x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
 void requirePositive(const char* key, Real value) {
   if (!(value > 0) || !std::isfinite(value))
-    throw CaseError(std::string(key) + " = " + fmt(value) + " is out of range: it must be > 0");
+    throw CaseError(std::string(key) + " = " + significant(value) + " is out of range: it must be > 0");
 }
 
 void requireSize(const char* key, const std::vector<Real>& v, int dim, bool allowEmpty) {
@@ -42,7 +36,7 @@ void validateCase(const CaseConfig& c) {
   if (c.isGiven("output_every") && c.isGiven("output_interval"))
     throw CaseError("output_every and output_interval are both given: choose one (steps or seconds of simulated time)");
   if (c.isGiven("output_interval") && !(c.outputInterval > 0))
-    throw CaseError("output_interval = " + fmt(c.outputInterval) + " is out of range: it must be > 0 (seconds of simulated time)");
+    throw CaseError("output_interval = " + significant(c.outputInterval) + " is out of range: it must be > 0 (seconds of simulated time)");
   checkKeyRanges(c);  // every key against its own range and choices (case_keys.cpp)
   const bool seed = c.model == "seed_wcsph";
   if (seed) {
@@ -66,8 +60,8 @@ void validateCase(const CaseConfig& c) {
     throw CaseError("name = \"" + c.name + "\" is not allowed: use letters, digits, '_', '-' and '.' (not . or ..)");
   requestedThreads(c);
   if (c.endTime / c.dt > kMaxSteps)
-    throw CaseError("end_time / dt = " + fmt(c.endTime / c.dt) + " steps is out of range: at most " +
-                    fmt(kMaxSteps) + " (raise dt or lower end_time)");
+    throw CaseError("end_time / dt = " + significant(c.endTime / c.dt) + " steps is out of range: at most " +
+                    significant(kMaxSteps) + " (raise dt or lower end_time)");
   const int D = c.dimension;
   if (c.starMass != 0) {
     requirePositive("star_mass", c.starMass);
@@ -102,8 +96,8 @@ void validateCase(const CaseConfig& c) {
     // The neighbour grid has cells of the support (at most 3h): bounded cell
     // indices keep its 64-bit hashing exact.
     if (extent / c.h > kMaxCellsPerAxis)
-      throw CaseError("h = " + fmt(c.h) + " is out of range for this domain: the domain is " + fmt(extent) +
-                      " m wide, more than " + fmt(kMaxCellsPerAxis) + " h (raise h or shrink the domain)");
+      throw CaseError("h = " + significant(c.h) + " is out of range for this domain: the domain is " + significant(extent) +
+                      " m wide, more than " + significant(kMaxCellsPerAxis) + " h (raise h or shrink the domain)");
   }
   validateBodies(c);
 }

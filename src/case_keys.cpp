@@ -8,7 +8,6 @@
 #include <cmath>
 #include <iterator>
 #include <map>
-#include <sstream>
 
 namespace sph {
 namespace {
@@ -41,12 +40,6 @@ std::vector<std::string> probeInterpolationNames() { return {"shepard", "plain"}
 std::vector<std::string> shiftingNames() { return {"none", "fickian"}; }
 std::vector<std::string> initialFlowNames() { return {"none", "taylor_green"}; }
 
-std::string fmt(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
 }  // namespace
 
 const char* groupName(KeyGroup g) {
@@ -62,11 +55,11 @@ const char* groupName(KeyGroup g) {
 std::string KeyRange::text() const {
   const bool hasLo = std::isfinite(lo), hasHi = std::isfinite(hi);
   if (hasLo && hasHi) {
-    if (!loOpen && !hiOpen) return fmt(lo) + " to " + fmt(hi);
-    return std::string(loOpen ? "> " : ">= ") + fmt(lo) + " and " + (hiOpen ? "< " : "<= ") + fmt(hi);
+    if (!loOpen && !hiOpen) return significant(lo) + " to " + significant(hi);
+    return std::string(loOpen ? "> " : ">= ") + significant(lo) + " and " + (hiOpen ? "< " : "<= ") + significant(hi);
   }
-  if (hasLo) return std::string(loOpen ? "> " : ">= ") + fmt(lo);
-  if (hasHi) return std::string(hiOpen ? "< " : "<= ") + fmt(hi);
+  if (hasLo) return std::string(loOpen ? "> " : ">= ") + significant(lo);
+  if (hasHi) return std::string(hiOpen ? "< " : "<= ") + significant(hi);
   return "any finite number";
 }
 
@@ -369,11 +362,11 @@ void checkKeyRanges(const CaseConfig& c) {
           using T = std::decay_t<decltype(c.*member)>;
           const T& value = c.*member;
           if constexpr (std::is_same_v<T, Real> || std::is_same_v<T, long> || std::is_same_v<T, int>) {
-            if (!k.range.contains(static_cast<double>(value))) bad(fmt(static_cast<double>(value)));
+            if (!k.range.contains(static_cast<double>(value))) bad(significant(static_cast<double>(value)));
           } else if constexpr (std::is_same_v<T, std::vector<Real>> || std::is_same_v<T, std::vector<long>>) {
             for (const auto& x : value)
               if (!k.range.contains(static_cast<double>(x)))
-                throw CaseError(std::string(k.name) + " holds " + fmt(static_cast<double>(x)) +
+                throw CaseError(std::string(k.name) + " holds " + significant(static_cast<double>(x)) +
                                 ": every value must be " + k.range.text());
           } else if constexpr (std::is_same_v<T, std::string>) {
             if (!k.choices || value.empty()) return;

@@ -3,21 +3,15 @@
 // kernel support.
 #include "sph/case_config.hpp"
 
+#include "sph/io/number_format.hpp"
 #include "sph/methods.hpp"
 #include "sph/wall_particles.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <string>
 
 namespace sph {
 namespace {
-
-std::string number(Real x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
 
 // The largest interaction distance of the case's model: the seed's h, or
 // the kernel's support.
@@ -48,12 +42,12 @@ void validatePeriodic(const CaseConfig& c) {
     if (!((seen >> a) & 1u)) continue;
     const Real L = c.domainMax[a] - c.domainMin[a];
     if (!(L >= 2 * support))
-      throw CaseError("periodic = \"" + c.periodic + "\": the domain is " + number(L) + " m along " + axes[a] +
-                      ", less than 2 kernel supports (2 x " + number(support) +
+      throw CaseError("periodic = \"" + c.periodic + "\": the domain is " + significant(L) + " m along " + axes[a] +
+                      ", less than 2 kernel supports (2 x " + significant(support) +
                       " m); widen domain_min/domain_max along it or lower h");
     if (particleWalls && c.spacing > 0 && std::abs(L / c.spacing - std::round(L / c.spacing)) > 1e-6)
-      throw CaseError("periodic = \"" + c.periodic + "\": the domain length along " + axes[a] + " (" + number(L) +
-                      " m) is not a whole number of spacings (" + number(c.spacing) +
+      throw CaseError("periodic = \"" + c.periodic + "\": the domain length along " + axes[a] + " (" + significant(L) +
+                      " m) is not a whole number of spacings (" + significant(c.spacing) +
                       " m): the wall particles would not join up across the periodic faces");
     if (c.lid && static_cast<int>(a) == c.dimension - 1)
       throw CaseError("lid = true puts walls on the top face, but the vertical axis is periodic (periodic = \"" +
@@ -90,7 +84,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
     throw CaseError("density_reinit = \"" + c.densityReinit + "\" needs density = \"continuity\" (summation "
                     "density is recomputed from the positions at every step)");
   if (c.backgroundPressure != 0 && (seed || (!c.eos.empty() && c.eos != "linear" && c.eos != "tait")))
-    throw CaseError("background_pressure = " + number(c.backgroundPressure) +
+    throw CaseError("background_pressure = " + significant(c.backgroundPressure) +
                     " needs model = \"wcsph\" with eos = \"linear\" or \"tait\"");
   if (c.shifting != "none" && (seed || !(c.spacing > 0)))
     throw CaseError("shifting = \"" + c.shifting + "\" needs model = \"wcsph\" and the lattice spacing (spacing > 0): "
@@ -101,8 +95,8 @@ void validateWallsAndDensity(const CaseConfig& c) {
                       "(the vortex array of a periodic square box)");
     const Real Lx = c.domainMax[0] - c.domainMin[0], Ly = c.domainMax[1] - c.domainMin[1];
     if (std::abs(Lx - Ly) > 1e-9 * Lx)
-      throw CaseError("initial_flow = \"taylor_green\" needs a square domain: domain_max - domain_min is " + number(Lx) +
-                      " x " + number(Ly) + " m");
+      throw CaseError("initial_flow = \"taylor_green\" needs a square domain: domain_max - domain_min is " + significant(Lx) +
+                      " x " + significant(Ly) + " m");
   }
   if (c.boundary == "dynamic" && c.density != "continuity")
     throw CaseError("boundary = \"dynamic\" needs density = \"continuity\" (dynamic wall particles carry a "
@@ -139,7 +133,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
     for (std::size_t d = 0; d < D; ++d) {
       const Real A = std::abs(c.paddleAmplitude[d]);
       if (c.obstacleMin[k + d] - A < c.domainMin[d] || c.obstacleMax[k + d] + A > c.domainMax[d])
-        throw CaseError("paddle " + std::to_string(c.paddle) + " with paddle_amplitude " + number(c.paddleAmplitude[d]) +
+        throw CaseError("paddle " + std::to_string(c.paddle) + " with paddle_amplitude " + significant(c.paddleAmplitude[d]) +
                         " would leave the domain [domain_min, domain_max] along axis " + std::to_string(d));
     }
   }
@@ -150,7 +144,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
     if (!(c.lid && c.walls && c.boundary == "dummy"))
       throw CaseError("lid_velocity needs a lid of dummy wall particles: lid = true, boundary = \"dummy\"");
     if (c.lidVelocity[D - 1] != 0)
-      throw CaseError("lid_velocity = [..., " + number(c.lidVelocity[D - 1]) +
+      throw CaseError("lid_velocity = [..., " + significant(c.lidVelocity[D - 1]) +
                       "]: the lid may only slide along its plane (its last component must be 0; the lid's "
                       "particles do not move)");
   }

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "sph/case_config.hpp"
+#include "sph/io/number_format.hpp"
 #include "sph/probes.hpp"
 
 #include <cmath>
@@ -189,11 +190,7 @@ class ProbeFiles {
   }
 
   static constexpr Real kDryWeight = 0.1;  // of a full support's sum_j V_j W = 1
-  static std::string number(Real x) {
-    char s[32];
-    std::snprintf(s, sizeof s, "%.10g", x);
-    return s;
-  }
+  static std::string number(Real x) { return significant(x, 10); }
   static std::string value(bool wet, Real x) { return wet ? number(x) : "nan"; }
 
   Kernel<D> kernel_;
