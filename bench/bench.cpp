@@ -196,7 +196,18 @@ int main(int argc, char** argv) {
   std::vector<double> ns{10000, 100000}, hdxs{1.35, 2.5}, threads{1, 2};
   std::string suite = "all";
   int steps = 200, repeats = 5;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  const char* usage =
+      "usage: sph-bench [--suite seed|water|kernels|3d|star|all] [--n 10000,100000]\n"
+      "                 [--hdx 1.35,2.5] [--steps 200] [--repeats 5] [--threads 1,2]\n";
+  for (int i = 1; i < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+      std::fputs(usage, stdout);
+      return 0;
+    }
+    if (i + 1 >= argc) {
+      std::fprintf(stderr, "sph-bench: option %s needs a value\n%s", argv[i], usage);
+      return 2;
+    }
     if (!std::strcmp(argv[i], "--n")) ns = parseList(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--hdx")) hdxs = parseList(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--threads")) threads = parseList(argv[i + 1]);
@@ -204,12 +215,16 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--repeats")) repeats = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--suite")) suite = argv[i + 1];
     else {
-      std::fprintf(stderr, "sph-bench: unknown option %s\n", argv[i]);
+      std::fprintf(stderr, "sph-bench: unknown option %s\n%s", argv[i], usage);
       return 2;
     }
   }
   std::vector<Scenario> s2, s3;
   const bool all = suite == "all";
+  if (!all && suite != "seed" && suite != "kernels" && suite != "water" && suite != "3d" && suite != "star") {
+    std::fprintf(stderr, "sph-bench: --suite %s is not one of seed, water, kernels, 3d, star, all\n", suite.c_str());
+    return 2;
+  }
   if (all || suite == "seed")
     for (double n : ns)
       for (double hdx : hdxs) {
