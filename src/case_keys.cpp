@@ -124,9 +124,9 @@ const std::vector<KeySpec>& caseKeys() {
       {"particle_file", G::kScene, &C::particleFile, "",
        "Particles from a CSV (header x,y[,z][,vx,vy[,vz]]) or a .vtp written by sph; replaces the generators",
        {}, "none", nullptr},
-      {"star_mass", G::kScene, &C::starMass, "kg", "Toy star mass M (0: no star; model wcsph, eos polytropic)",
-       within(0, 1e12), nullptr, nullptr},
-      {"star_radius", G::kScene, &C::starRadius, "m", "Toy star radius R", within(0, 1e9), nullptr, nullptr},
+      {"star_mass", G::kScene, &C::starMass, "kg", "Toy star mass M (not given: no star; model wcsph, eos polytropic)",
+       above(0, 1e12), "none", nullptr},
+      {"star_radius", G::kScene, &C::starRadius, "m", "Toy star radius R", above(0, 1e9), "none", nullptr},
       {"star_particles", G::kScene, &C::starParticles, "", "Particles per star", count(1, 1e9), "none", nullptr},
       {"star_center", G::kScene, &C::starCenter, "m",
        "Star centres, D values per star (the attraction -lambda x always pulls to the origin)", coordinate(),
@@ -361,6 +361,7 @@ std::string keyHelp(const KeySpec& k) {
 }
 
 void checkKeyRanges(const CaseConfig& c) {
+  static const CaseConfig unset;
   for (const KeySpec& k : caseKeys()) {
     auto bad = [&](const std::string& value) {
       throw CaseError(std::string(k.name) + " = " + value + " is out of range: it must be " + k.range.text());
@@ -370,6 +371,9 @@ void checkKeyRanges(const CaseConfig& c) {
           using T = std::decay_t<decltype(c.*member)>;
           const T& value = c.*member;
           if constexpr (std::is_same_v<T, Real> || std::is_same_v<T, long> || std::is_same_v<T, int>) {
+            // A key not given keeps its initial value, which may stand for
+            // "none" outside the range (star_mass, star_radius: no star).
+            if (!c.isGiven(k.name) && value == unset.*member) return;
             if (!k.range.contains(static_cast<double>(value))) bad(fmt(static_cast<double>(value)));
           } else if constexpr (std::is_same_v<T, std::vector<Real>> || std::is_same_v<T, std::vector<long>>) {
             for (const auto& x : value)
