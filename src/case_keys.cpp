@@ -426,6 +426,9 @@ std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
           for (std::size_t i = 0; i < value.size(); ++i) list += (i ? ", " : "") + numberText(value[i]);
           return list + "]";
         } else {
+          // A number at its initial value outside its range is "none" (star_mass).
+          static const CaseConfig unset;
+          if (value == unset.*member && !k.range.contains(static_cast<double>(value))) return "";
           return numberText(value);
         }
       },
