@@ -29,6 +29,7 @@
 #include <limits>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace sph {
 namespace {
@@ -87,19 +88,45 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   out << "  density          " << fmt(rhoMin, 6) << " .. " << fmt(rhoMax, 6) << "  (rho0 = " << fmt(c.rho0, 6) << ")\n";
   out << "  pressure         " << fmt(pMin) << " .. " << fmt(pMax) << (D == 2 ? " N/m" : " Pa") << "\n";
 
-  // The speed the case can reach: its initial velocities, or a fall over
-  // the fluid's height (sqrt(2 g H)).
+  // The speed the case can reach: the largest of its initial velocities, a
+  // fall over the fluid's height (sqrt(2 g H)), a sliding lid's speed and a
+  // paddle's peak speed 2 pi |A| / T (d(t) = A sin(2 pi t / T)).
   const Real g = gravityVector<D>(c).norm();
   const Real H = nFluid ? yMax - yMin + dx : 0;
-  const Real vExpected = std::max(std::sqrt(v2), std::sqrt(2 * g * H));
+  struct Speed {
+    const char* what;
+    Real value;
+  };
+  std::vector<Speed> speeds{{"initial", std::sqrt(v2)}, {"sqrt(2 g H)", std::sqrt(2 * g * H)}};
+  auto norm = [](const std::vector<Real>& v) {
+    Real s2 = 0;
+    for (Real x : v) s2 += x * x;
+    return std::sqrt(s2);
+  };
+  if (c.walls && c.lid && !c.lidVelocity.empty()) speeds.push_back({"lid", norm(c.lidVelocity)});
+  if (c.paddle > 0) speeds.push_back({"paddle 2 pi A / T", 2 * M_PI * norm(c.paddleAmplitude) / c.paddlePeriod});
+  Speed fastest{"", 0};
+  std::string listed;
+  for (const Speed& s : speeds) {
+    if (s.value > fastest.value) fastest = s;
+    if (s.value > 0) listed += (listed.empty() ? "" : ", ") + std::string(s.what) + " " + fmt(s.value);
+  }
+  const Real vExpected = fastest.value;
   const Real c0 = model.maxSoundSpeed(c.rho0, c.rho0);
   if (c0 > 0 && vExpected > 0) {
     const Real mach = vExpected / c0;
-    out << "  sound speed      c0 = " << fmt(c0) << " m/s; expected speed " << fmt(vExpected)
-        << " m/s (initial and sqrt(2 g H), H = " << fmt(H) << " m): Mach " << fmt(mach) << "\n";
+    out << "  sound speed      c0 = " << fmt(c0) << " m/s; expected speed " << fmt(vExpected) << " m/s (" << listed
+        << (g > 0 ? "; H = " + fmt(H) + " m" : "") << "): Mach " << fmt(mach) << "\n";
+    // Ma <= 0.1 needs c >= 10 v: c0 itself with eos tait; k = c^2 with the
+    // linear EOS and the seed's p = k (rho - rho0).
+    const Real cNeeded = 10 * vExpected;
+    const bool seed = c.model == "seed_wcsph", tait = !seed && c.eos == "tait", linear = seed || c.eos == "linear";
+    std::string how;
+    if (tait) how = ": c0 >= " + fmt(cNeeded) + " m/s";
+    else if (linear) how = ": k >= " + fmt(cNeeded * cNeeded) + " m^2/s^2 (c = sqrt(k))";
     if (mach > 0.1)
       warn("Mach " + fmt(mach) + " > 0.1: the density will vary by ~" + fmt(100 * mach * mach) +
-           "% (Ma^2); raise c0 (eos tait) or k to at least " + fmt(10 * vExpected) + " m/s");
+           "% (Ma^2); a sound speed of at least " + fmt(cNeeded) + " m/s keeps Mach <= 0.1" + how);
   }
 
   // dt against the limits (time_step.hpp gives the adaptive ones).

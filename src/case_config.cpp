@@ -25,6 +25,25 @@ void requireSize(const char* key, const std::vector<Real>& v, int dim, bool allo
 }
 
 
+// Every toy star's ball, star_center +- star_radius, inside the domain (its
+// random particles fill the ball).
+void validateStarsInDomain(const CaseConfig& c) {
+  if (c.starMass == 0) return;
+  const std::size_t D = static_cast<std::size_t>(c.dimension);
+  for (std::size_t s = 0; s < c.starParticles.size(); ++s)
+    for (std::size_t d = 0; d < D; ++d) {
+      const Real centre = c.starCenter[s * D + d];
+      if (centre - c.starRadius < c.domainMin[d] || centre + c.starRadius > c.domainMax[d]) {
+        std::string where;
+        for (std::size_t e = 0; e < D; ++e) where += (e ? ", " : "") + significant(c.starCenter[s * D + e]);
+        throw CaseError("star " + std::to_string(s + 1) + " (star_center = [" + where + "], star_radius = " +
+                        significant(c.starRadius) + ") reaches outside the domain along axis " + std::to_string(d + 1) +
+                        ": its ball must lie within [domain_min, domain_max] = [" + significant(c.domainMin[d]) + ", " +
+                        significant(c.domainMax[d]) + "] there (move star_center, shrink star_radius or widen the domain)");
+      }
+    }
+}
+
 }  // namespace
 
 long stepsFor(const CaseConfig& c) {
@@ -63,8 +82,17 @@ void validateCase(const CaseConfig& c) {
     throw CaseError("end_time / dt = " + significant(c.endTime / c.dt) + " steps is out of range: at most " +
                     significant(kMaxSteps) + " (raise dt or lower end_time)");
   const int D = c.dimension;
+  // A toy star needs its mass and radius (the range check refused a given 0).
+  const bool starKeys = c.isGiven("star_particles") || c.isGiven("star_center") || c.isGiven("star_radius") ||
+                        c.isGiven("star_velocity");
+  if (c.starMass == 0 && starKeys)
+    throw CaseError("star_mass is missing: the case describes a toy star (star_particles, star_center, "
+                    "star_radius) and its mass M must be " + findKey("star_mass")->range.text() + " kg");
   if (c.starMass != 0) {
     requirePositive("star_mass", c.starMass);
+    if (c.starRadius == 0 && !c.isGiven("star_radius"))
+      throw CaseError("star_radius is missing: a toy star's radius R must be " +
+                      findKey("star_radius")->range.text() + " m");
     requirePositive("star_radius", c.starRadius);
     if (c.starParticles.empty()) throw CaseError("star_particles is missing: give the particles of each star");
     for (long n : c.starParticles)
@@ -100,6 +128,7 @@ void validateCase(const CaseConfig& c) {
                       " m wide, more than " + significant(kMaxCellsPerAxis) + " h (raise h or shrink the domain)");
   }
   validateBodies(c);
+  validateStarsInDomain(c);
 }
 
 int requestedThreads(const CaseConfig& c) {
@@ -158,7 +187,7 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
   if (!c.gravity.empty()) note("g", "gravity gives the body acceleration");
   if (c.starMass == 0)
     for (const char* key : {"star_radius", "star_particles", "star_center", "star_velocity", "seed"})
-      note(key, "there is no toy star (star_mass = 0)");
+      note(key, "there is no toy star (no star_mass)");
   // (spacing stays used: it is the particle spacing the snapshots record.)
   if (!c.particleFile.empty())
     for (const char* key : {"block_min", "block_max", "disc_center", "disc_radius", "points", "velocity"})

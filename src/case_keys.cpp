@@ -117,9 +117,9 @@ const std::vector<KeySpec>& caseKeys() {
       {"particle_file", G::kScene, &C::particleFile, "",
        "Particles from a CSV (header x,y[,z][,vx,vy[,vz]]) or a .vtp written by sph; replaces the generators",
        {}, "none", nullptr},
-      {"star_mass", G::kScene, &C::starMass, "kg", "Toy star mass M (0: no star; model wcsph, eos polytropic)",
-       within(0, 1e12), nullptr, nullptr},
-      {"star_radius", G::kScene, &C::starRadius, "m", "Toy star radius R", within(0, 1e9), nullptr, nullptr},
+      {"star_mass", G::kScene, &C::starMass, "kg", "Toy star mass M (not given: no star; model wcsph, eos polytropic)",
+       above(0, 1e12), "none", nullptr},
+      {"star_radius", G::kScene, &C::starRadius, "m", "Toy star radius R", above(0, 1e9), "none", nullptr},
       {"star_particles", G::kScene, &C::starParticles, "", "Particles per star", count(1, 1e9), "none", nullptr},
       {"star_center", G::kScene, &C::starCenter, "m",
        "Star centres, D values per star (the attraction -lambda x always pulls to the origin)", coordinate(),
@@ -270,8 +270,9 @@ const std::vector<KeySpec>& caseKeys() {
        "pressure gradient; the continuity sum keeps grad W)",
        {}, nullptr, gradientCorrectionNames},
       {"regime_check", G::kNumerics, &C::regimeCheck, "",
-       "Every 10 steps: Mach number above 1, the fluid breaking up (over half its particles alone), particles "
-       "collapsing (4x the neighbours), pairing (a warning): stop the run naming the cause, only warn, or off",
+       "Every 10 steps and before every snapshot: Mach number above 1, a Tait fluid 10% above rho0, the fluid "
+       "breaking up (over half its particles alone), particles collapsing (4x the neighbours), pairing (a "
+       "warning): stop the run naming the cause (no snapshot of it written), only warn, or off",
        {}, nullptr, regimeCheckNames},
       {"threads", G::kNumerics, &C::threads, "",
        "OpenMP threads: a count from 1 to 1024 (OMP_NUM_THREADS is obeyed too), or auto: start from the cores "
@@ -353,6 +354,7 @@ std::string keyHelp(const KeySpec& k) {
 }
 
 void checkKeyRanges(const CaseConfig& c) {
+  static const CaseConfig unset;
   for (const KeySpec& k : caseKeys()) {
     auto bad = [&](const std::string& value) {
       throw CaseError(std::string(k.name) + " = " + value + " is out of range: it must be " + k.range.text());
@@ -362,6 +364,9 @@ void checkKeyRanges(const CaseConfig& c) {
           using T = std::decay_t<decltype(c.*member)>;
           const T& value = c.*member;
           if constexpr (std::is_same_v<T, Real> || std::is_same_v<T, long> || std::is_same_v<T, int>) {
+            // A key not given keeps its initial value, which may stand for
+            // "none" outside the range (star_mass, star_radius: no star).
+            if (!c.isGiven(k.name) && value == unset.*member) return;
             if (!k.range.contains(static_cast<double>(value))) bad(significant(static_cast<double>(value)));
           } else if constexpr (std::is_same_v<T, std::vector<Real>> || std::is_same_v<T, std::vector<long>>) {
             for (const auto& x : value)
@@ -414,6 +419,9 @@ std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
           for (std::size_t i = 0; i < value.size(); ++i) list += (i ? ", " : "") + numberText(value[i]);
           return list + "]";
         } else {
+          // A number at its initial value outside its range is "none" (star_mass).
+          static const CaseConfig unset;
+          if (value == unset.*member && !k.range.contains(static_cast<double>(value))) return "";
           return numberText(value);
         }
       },

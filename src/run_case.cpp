@@ -490,8 +490,16 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         status = kBlewUp;
         break;
       }
-      // Still physics? Every 10 steps (regime_check.hpp).
-      if (regimeOn && scene.stepIndex() % 10 == 0) {
+      // An adaptive dt that no longer lets the run end stops it (below).
+      const bool collapsed =
+          adaptive && !finished() && (c.endTime - scene.time()) / scene.lastTimeStep().dt > kMaxSteps;
+      const bool outputDue = (byInterval ? scene.time() >= nextOutput * (1 - 1e-12) - 1e-12 * c.outputInterval
+                                         : scene.stepIndex() % c.outputEvery == 0) ||
+                             finished() || stopSignal() != 0;
+      // Still physics? Every 10 steps, and before anything is written: a
+      // snapshot, the last step, a stop signal, a collapsed dt (regime_check.hpp).
+      // So however few its steps, no run writes a snapshot of nonsense.
+      if (regimeOn && (scene.stepIndex() % 10 == 0 || outputDue || collapsed)) {
         const auto verdict = regime.judge(measureRegime(scene.particles(), scene.neighbours(), soundSpeed, c.spacing, densityRef),
                                           scene.lastTimeStep().dt, c.h);
         if (!verdict.warning.empty()) {
@@ -517,7 +525,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         }
       }
       // An adaptive dt that no longer lets the run end stops it, named.
-      if (adaptive && !finished() && (c.endTime - scene.time()) / scene.lastTimeStep().dt > kMaxSteps) {
+      if (collapsed) {
         if (showLiveLine) err << "\n";
         const std::string message = "the adaptive time step collapsed at step " +
                                     std::to_string(scene.stepIndex()) + ", t = " + shortestDecimal(scene.time()) +
@@ -531,9 +539,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         status = kBlewUp;
         break;
       }
-      const bool outputDue = byInterval ? scene.time() >= nextOutput * (1 - 1e-12) - 1e-12 * c.outputInterval
-                                        : scene.stepIndex() % c.outputEvery == 0;
-      if (outputDue || finished() || stopSignal() != 0) {
+      if (outputDue) {
         output.write(scene);
         saveRecord();
         if (byInterval) nextOutput = outputTime(outputIndex(scene.time()) + 1);

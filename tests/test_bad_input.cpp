@@ -77,6 +77,32 @@ BOOST_AUTO_TEST_CASE(particle_outside_domain) {
   expectRejected({"--block_max", "1.2", "0.5"}, "outside the domain");
 }
 
+// Toy stars (issue 21): a star's mass and radius must be > 0; a zero,
+// negative or missing one is named with its range, not reported as "zero
+// particles" (star_mass = 0) or as a range "0 to 1e+12" that includes 0.
+BOOST_AUTO_TEST_CASE(star_mass_and_radius_named_with_their_ranges) {
+  expectRejected({"--star_mass", "0"}, "star_mass = 0 is out of range: it must be > 0 and <= 1e+12", "toy_star_2d");
+  expectRejected({"--star_mass", "-2"}, "star_mass = -2 is out of range: it must be > 0 and <= 1e+12", "toy_star_2d");
+  expectRejected({"--star_radius", "0"}, "star_radius = 0 is out of range: it must be > 0 and <= 1e+09", "toy_star_2d");
+  std::ifstream in(test::caseFile("toy_star_2d"));
+  std::string noMass, noRadius, line;
+  while (std::getline(in, line)) {
+    if (line.rfind("star_mass", 0) != 0) noMass += line + "\n";
+    if (line.rfind("star_radius", 0) != 0) noRadius += line + "\n";
+  }
+  expectRejected({writeFile("no_mass.case", noMass)}, "star_mass is missing: the case describes a toy star", "");
+  expectRejected({writeFile("no_radius.case", noRadius)}, "star_radius is missing: a toy star's radius R must be > 0",
+                 "");
+}
+
+// A star whose ball leaves the domain names star_center and star_radius.
+BOOST_AUTO_TEST_CASE(star_outside_the_domain_names_its_centre_and_radius) {
+  expectRejected({"--star_center", "2.5", "0"},
+                 "star 1 (star_center = [2.5, 0], star_radius = 0.75) reaches outside the domain along axis 1",
+                 "toy_star_2d");
+  expectRejected({"--star_radius", "3.5"}, "star_radius = 3.5) reaches outside the domain", "toy_star_2d");
+}
+
 BOOST_AUTO_TEST_CASE(zero_particles) {
   const std::string file = writeFile("empty.case", "# no particles at all\nh = 0.01\n");
   const auto out = test::scratchDir("bad_empty") / "out";

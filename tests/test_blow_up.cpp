@@ -5,6 +5,11 @@
 #include "pvd_reader.hpp"
 #include "test_support.hpp"
 
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+
+#include <algorithm>
+#include <cmath>
 
 using namespace sph;
 
@@ -36,6 +41,51 @@ BOOST_AUTO_TEST_CASE(state_check_names_particle_and_quantity) {
   BOOST_TEST(!failure->detail.empty());
   BOOST_TEST((failure->quantity == "position" || failure->quantity == "acceleration" ||
               failure->quantity == "velocity"));
+}
+
+// Nonsense in a short run (issue 21): the default dam break with reflecting
+// walls at dt = 1 s (acoustic number c0 dt / h = 2900, 15000x the shipped
+// dt) reaches ~6e4 m/s, Mach 1.4e3, in its first step, still finite and
+// inside the box, so the state check passes it. Before the regime check ran
+// before every snapshot, the run took its 2 steps, ended with exit 0 and
+// wrote snapshots at 1e14 m/s. Now the check runs before each snapshot
+// (output_interval 0.01 s: one is due at step 1) and at the end (an
+// output_interval longer than the run: only the end), so the run stops
+// with exit 3 naming the Mach number, and the series holds only the start:
+// every speed in it below c0 = 44 m/s.
+BOOST_AUTO_TEST_CASE(a_two_step_run_is_checked_before_its_snapshots) {
+  for (const char* interval : {"0.01", "5"}) {
+    const auto dir = test::scratchDir(std::string("two_steps_") + interval);
+    const auto r = test::runSph({"run", test::caseFile("dam_break"), "--output", dir.string(), "--boundary",
+                                 "reflecting", "--dt", "1", "--end_time", "2", "--output_interval", interval,
+                                 "--no-progress"});
+    BOOST_TEST(r.exitCode == 3, r.output);
+    BOOST_TEST(r.output.find("the run left its regime at step") != std::string::npos, r.output);
+    BOOST_TEST(r.output.find(": Mach ") != std::string::npos, r.output);
+    const auto series = test::readPvd(dir / "dam_break.pvd");
+    BOOST_TEST_REQUIRE(series.size() == 1u, "interval " << interval);
+    BOOST_TEST(series[0].time == 0.0);
+    vtkDataArray* v = series[0].data->GetPointData()->GetArray("velocity");
+    BOOST_TEST_REQUIRE(v != nullptr);
+    double fastest = 0;
+    for (vtkIdType i = 0; i < v->GetNumberOfTuples(); ++i) {
+      const double* c = v->GetTuple3(i);
+      fastest = std::max(fastest, std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
+    }
+    BOOST_TEST(fastest < 44.0);
+    BOOST_TEST(!std::filesystem::exists(dir / "dam_break_00001.vtp"));
+  }
+}
+
+// A sound short run still passes: the shipped dam break for two steps of
+// its own dt ends with exit 0 and its two snapshots (the start, the end).
+BOOST_AUTO_TEST_CASE(a_sound_short_run_passes) {
+  const auto dir = test::scratchDir("two_sound_steps");
+  const auto r = test::runSph({"run", test::caseFile("dam_break"), "--output", dir.string(), "--end_time", "1e-4",
+                               "--no-progress"});
+  BOOST_TEST(r.exitCode == 0, r.output);
+  BOOST_TEST(r.output.find("steps            2") != std::string::npos, r.output);
+  BOOST_TEST(test::readPvd(dir / "dam_break.pvd").size() == 2u);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -6,7 +6,9 @@
 #include <boost/test/unit_test.hpp>
 
 #include <filesystem>
+#include <initializer_list>
 #include <string>
+#include <vector>
 
 using namespace sph;
 
@@ -74,6 +76,41 @@ BOOST_AUTO_TEST_CASE(the_wall_guard_is_stated_and_its_absence_warned_about) {
   BOOST_TEST(off.exitCode == 0);
   BOOST_TEST(off.output.find("warning: wall_guard = false") != std::string::npos, off.output);
   BOOST_TEST(off.output.find("1 warning") != std::string::npos);
+}
+
+// The Mach estimate counts the walls that drive the flow (issue 21). A
+// sliding lid: the Couette case with its lid at U = 0.5 m/s and a Tait
+// sound speed c0 = 10 U = 5 m/s is Mach 0.1 exactly (no gravity, no initial
+// flow: the lid alone sets the speed); at c0 = 2.5 m/s it is Mach 0.2 and
+// warned about, naming the c0 that Mach 0.1 needs. A paddle: the wave maker
+// at period T = 0.05 s moves at 2 pi A / T = 2 pi 0.03 / 0.05 = 3.77 m/s,
+// above the fall speed sqrt(2 g 0.3) = 2.43 m/s; c0 = 37.7 m/s gives 0.09999.
+BOOST_AUTO_TEST_CASE(mach_counts_the_lid_and_the_paddle) {
+  const std::vector<std::string> lid{"check", shipped("couette_2d.case"), "--lid_velocity", "0.5", "0"};
+  auto with = [](std::vector<std::string> a, std::initializer_list<std::string> more) {
+    a.insert(a.end(), more);
+    return a;
+  };
+  const test::Result r = test::runSph(with(lid, {"--eos", "tait", "--gamma", "7", "--c0", "5"}));
+  BOOST_TEST_MESSAGE(r.output);
+  BOOST_TEST(r.exitCode == 0);
+  BOOST_TEST(r.output.find("expected speed 0.5 m/s (lid 0.5): Mach 0.1\n") != std::string::npos, r.output);
+  BOOST_TEST(r.output.find("warning: Mach") == std::string::npos, r.output);
+  const test::Result fast = test::runSph(with(lid, {"--eos", "tait", "--gamma", "7", "--c0", "2.5"}));
+  BOOST_TEST(fast.output.find("Mach 0.2") != std::string::npos, fast.output);
+  BOOST_TEST(fast.output.find("warning: Mach 0.2 > 0.1") != std::string::npos, fast.output);
+  BOOST_TEST(fast.output.find("at least 5 m/s keeps Mach <= 0.1: c0 >= 5 m/s") != std::string::npos, fast.output);
+  // The linear EOS's sound speed is sqrt(k): the advice is k in m^2/s^2.
+  const test::Result linear = test::runSph(with(lid, {"--eos", "linear", "--k", "1"}));
+  BOOST_TEST(linear.output.find("Mach 0.5") != std::string::npos, linear.output);
+  BOOST_TEST(linear.output.find("k >= 25 m^2/s^2 (c = sqrt(k))") != std::string::npos, linear.output);
+
+  const test::Result paddle =
+      test::runSph({"check", shipped("wave_paddle.case"), "--paddle_period", "0.05", "--c0", "37.7"});
+  BOOST_TEST_MESSAGE(paddle.output);
+  BOOST_TEST(paddle.exitCode == 0);
+  BOOST_TEST(paddle.output.find("paddle 2 pi A / T 3.77") != std::string::npos, paddle.output);
+  BOOST_TEST(paddle.output.find("): Mach 0.1\n") != std::string::npos, paddle.output);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

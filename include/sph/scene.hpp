@@ -59,6 +59,8 @@ class Scene {
     const bool density = (model_.needs() & fieldBit(kFieldDrho)) != 0;
     const FieldSet integratorNeeds = std::visit([&](const auto& i) { return i.needs(density); }, integrator_);
     P_.allocate(model_.needs() | integratorNeeds);
+    if (auto* leapFrog = std::get_if<LeapFrog<D>>(&integrator_))
+      leapFrog->forcesSeeHalfStepVelocity = model_.forcesSeeHalfStepVelocity();
   }
 
   // Periodic axes of the domain box; call before initialise() or resume().

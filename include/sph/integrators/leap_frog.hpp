@@ -19,9 +19,10 @@
 // For a fixed dt this is the seed scheme's leap-frog exactly: its half-step
 // start v^{1/2} = v^0 + a^0 dt/2 and v^{n+1/2} = v^{n-1/2} + a^n dt are the
 // same numbers, since v^n = v^{n-1/2} + a^n dt/2. Between drift and kick the
-// forces at x^{n+1} see the estimate v^{n+1/2} + a^n dt/2 (the seed's choice
-// for viscosity). With constant acceleration it reproduces x0 + v0 t + a
-// t^2/2 to round-off. The state between steps is x, v (and rho): a run
+// forces at x^{n+1} see the estimate v^{n+1/2} + a^n dt/2 of v^{n+1}, or,
+// with forcesSeeHalfStepVelocity (the seed model: its document's leap-frog
+// holds only v^{n+1/2}), v^{n+1/2} itself. With constant acceleration it
+// reproduces x0 + v0 t + a t^2/2 to round-off. The state between steps is x, v (and rho): a run
 // resumed from a snapshot continues bit for bit.
 #pragma once
 
@@ -36,6 +37,10 @@ struct LeapFrog {
   static constexpr bool kDensityRateApart = true;
   static FieldSet needs(bool) { return fieldBit(kFieldVHalf); }
 
+  // The velocity the forces see between drift and kick (set by the Scene
+  // from its model): v^{n+1/2} + a^n dt/2, or v^{n+1/2} when true.
+  bool forcesSeeHalfStepVelocity = false;
+
   // Up to the step's last evaluation; finish() completes each particle.
   template <class Evaluate, class Constrain, class DensityRate>
   void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain,
@@ -46,7 +51,7 @@ struct LeapFrog {
       for (std::size_t i = 0; i < nFluid; ++i) {
         P.vHalf[i] = P.v[i] + (dt / 2) * P.a[i];
         P.x[i] += dt * P.driftVelocity(i, P.vHalf[i]);
-        P.v[i] = P.vHalf[i] + (dt / 2) * P.a[i];
+        P.v[i] = forcesSeeHalfStepVelocity ? P.vHalf[i] : P.vHalf[i] + (dt / 2) * P.a[i];
         constrain(P, i);
       }
     } else {

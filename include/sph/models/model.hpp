@@ -38,6 +38,11 @@ class Model {
     BodyForces<D> bodies;
     FieldSet needs = 0;          // optional fields its passes use
     std::vector<std::string> termNames;
+    // The velocity the forces see between drift and kick (leap-frog): false,
+    // the estimate v^{n+1/2} + a^n dt/2 of v^{n+1}; true, the half-step
+    // v^{n+1/2} itself, the only velocity the seed document's leap-frog
+    // holds (seed_wcsph; docs/methods/seed-model.md).
+    bool forcesSeeHalfStepVelocity = false;
   };
 
   Model(Info info, std::vector<Pass<D>> passes, std::vector<Pass<D>> afterStep = {})
@@ -94,6 +99,7 @@ class Model {
   const BodyForces<D>& bodies() const { return info_.bodies; }
   FieldSet needs() const { return info_.needs; }
   const std::vector<std::string>& termNames() const { return info_.termNames; }
+  bool forcesSeeHalfStepVelocity() const { return info_.forcesSeeHalfStepVelocity; }
   const std::vector<Pass<D>>& passes() const { return passes_; }
   const std::vector<Pass<D>>& afterStepPasses() const { return afterStep_; }
   // The term bits the last evaluate() and the afterStep() after it ran (term_bits.hpp).

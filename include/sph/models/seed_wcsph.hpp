@@ -9,6 +9,8 @@
 //   F_g,i = -rho_i g e_up
 // with support radius h, mass scaled once so the mean density is rho0, leap-
 // frog time stepping and damped reflecting walls (see the files of each part).
+// v_ij is the half-step velocity v^{t-1/2} (v^0 on the first step): the seed
+// document's leap-frog holds no other (docs/methods/seed-model.md).
 //
 // Passes: summation density with the linear EOS, then the seed forces.
 // The terms a case switches off (mu = 0, g = 0) are not built.
@@ -37,6 +39,9 @@ Model<D> makeSeedWcsph(const SeedWcsphParameters& prm) {
   info.restDensity = prm.rho0;
   info.eos = LinearEos{prm.k, prm.rho0};
   info.termNames = {"seed_density", "linear_eos", "seed_pressure"};
+  // The viscous term's v_ij at step t is the half-step v^{t-1/2}: the seed's
+  // leap-frog holds no other velocity (docs/methods/seed-model.md).
+  info.forcesSeeHalfStepVelocity = true;
   SeedForcePass<D> forces{SeedPressure{kernels}, std::nullopt, {}};
   if (prm.mu > 0) {
     forces.viscosity = SeedViscosity{kernels, prm.mu};
