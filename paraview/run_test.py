@@ -518,8 +518,9 @@ def t_catalyst_same_particles(e):
 
 def t_catalyst_refusals(e):
     """Each bad --catalyst is refused before the run: exit 2, one line on
-    the output naming the key `catalyst` and the file, no output folder.
-    And plain runs pay nothing: sph itself links neither Python nor
+    the output naming the key `catalyst` and the file, no output folder. A
+    script that raises during the run is reported once (one warning with
+    the step) and the run ends normally. And plain runs pay nothing: sph itself links neither Python nor
     ParaView's Catalyst (the plugin is loaded only for --catalyst)."""
     e.need_tools()
     code, out = run(["ldd", e.a.sph], expect_ok=False)
@@ -565,6 +566,30 @@ def t_catalyst_refusals(e):
                          out_dir, "--end_time", "0.001"] + flags,
                         expect_ok=False, env=env)
         expect_refusal(code, out, out_dir, ["catalyst", file_word])
+    log("-- a script that raises during the run")
+    raising = os.path.join(w, "raises_at_third_call.py")
+    with open(raising, "w") as fh:
+        fh.write("calls = [0]\n"
+                 "def RequestDataDescription(d):\n"
+                 "    d.GetInputDescriptionByName('input').AllFieldsOn()\n"
+                 "def DoCoProcessing(d):\n"
+                 "    calls[0] += 1\n"
+                 "    if calls[0] == 3:\n"
+                 "        raise ValueError('third call')\n")
+    out_dir = os.path.join(w, "run_raising")
+    code, out = run([e.a.sph, "run", case_path("dam_break"), "--output",
+                     out_dir, "--end_time", "0.005", "--no-progress",
+                     "--catalyst", raising, "--catalyst_every", "20"],
+                    expect_ok=False, env=no_display)
+    warnings = [l for l in out.splitlines() if l.startswith("sph: warning:")]
+    if code != 0 or not os.path.isfile(os.path.join(out_dir, "dam_break.pvd")):
+        raise TestFailure("a script failing during the run stopped it "
+                          "(exit %d)" % code)
+    if len(warnings) != 1 or not all(
+            word in warnings[0] for word in ("catalyst", "raises_at_third_call.py",
+                                             "step 40", "third call")):
+        raise TestFailure("expected one warning naming catalyst, the script, "
+                          "step 40 and the error, got %s" % warnings)
     log("-- catalyst in a case file")
     out_dir = os.path.join(w, "run_case_key")
     code, out = run([e.a.sph, "run", case, "--output", out_dir],
