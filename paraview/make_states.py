@@ -120,7 +120,8 @@ def main():
             # array) from the fluid, and still shows runs without `kind`.
             reader, display, view = render.build_default(
                 rel, info, field, "Magnitude", arrays[field], preset,
-                STATE_VIEW_SIZE, "z", split=True, clip=clip)
+                STATE_VIEW_SIZE, "z", split=True, clip=clip,
+                unit=render.vtp_point_units(steps[0][1]).get(field))
             view.SMProxy.SetAnnotation(render.VIEW_ANNOTATION + "case", case)
             scene = pv.GetAnimationScene()
             scene.UpdateAnimationUsingDataTimeSteps()

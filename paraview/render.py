@@ -200,8 +200,8 @@ def read_pvd(pvd):
     return steps
 
 
-def vtp_point_arrays(vtp):
-    """{name: number of components} of the point data of a VTK XML file,
+def vtp_point_data_xml(vtp):
+    """The <PointData> element of a VTK XML file as text ("" without one),
     read from its XML header (works for inline and appended data)."""
     head = []
     with open(vtp, "rb") as fh:
@@ -211,14 +211,46 @@ def vtp_point_arrays(vtp):
             head.append(line)
     text = b"".join(head).decode("latin-1")
     m = re.search(r"<PointData[^>]*>(.*?)</PointData>", text, re.S)
-    if not m:
-        return {}
+    return m.group(1) if m else ""
+
+
+def vtp_point_arrays(vtp):
+    """{name: number of components} of the point data of a VTK XML file."""
     arrays = {}
-    for tag in re.finditer(r"<DataArray\b([^>]*)>", m.group(1)):
+    for tag in re.finditer(r"<DataArray\b([^>]*)>", vtp_point_data_xml(vtp)):
         attrs = dict(re.findall(r'(\w+)="([^"]*)"', tag.group(1)))
         if "Name" in attrs:
             arrays[attrs["Name"]] = int(attrs.get("NumberOfComponents", "1"))
     return arrays
+
+
+def vtp_point_units(vtp):
+    """{name: unit} of the point arrays of a VTK XML file that carry one (the
+    UNITS_LABEL information key sph writes: Pa, N/m, kg/m^3, ...), read from
+    its XML header."""
+    units = {}
+    for arr in re.finditer(r"<DataArray\b([^>]*?)(/>|>(.*?)</DataArray>)",
+                           vtp_point_data_xml(vtp), re.S):
+        name = re.search(r'\bName="([^"]*)"', arr.group(1))
+        unit = re.search(r'<InformationKey\s+name="UNITS_LABEL"[^>]*>\s*'
+                         r'(.*?)\s*</InformationKey>', arr.group(3) or "",
+                         re.S)
+        if name and unit:
+            units[name.group(1)] = unit.group(1)
+    return units
+
+
+def legend_title(field, component, ncomp, unit=None):
+    """The colour legend's title: the field (speed for the velocity's
+    magnitude) and its unit, "pressure [Pa]"; none for a dimensionless
+    unit ("1") or an array without one."""
+    # ("|v|" would be nicer, but the legend's font drops the bars)
+    title = field if ncomp == 1 else (
+        ("speed" if field == "velocity" else field + " mag.")
+        if component == "Magnitude" else "%s %s" % (field, component))
+    if unit and unit != "1":
+        title += " [%s]" % unit
+    return title
 
 
 def check_field(field, arrays, vtp):
@@ -312,7 +344,11 @@ def field_data(vtp):
     r = vtkXMLPolyDataReader()
     r.SetFileName(vtp)
     r.Update()
-    out = r.GetOutput()
+    return polydata_field_data(r.GetOutput())
+
+
+def polydata_field_data(out):
+    """Field data of a vtkPolyData as {name: tuple of values}, plus bounds."""
     fd = out.GetFieldData()
     values = {}
     for k in range(fd.GetNumberOfArrays()):
@@ -328,8 +364,13 @@ def field_data(vtp):
 class RunInfo:
     """What the renderer needs to know about a run."""
 
-    def __init__(self, steps, bounds_override=None):
-        first, self.first_bounds = field_data(steps[0][1])
+    def __init__(self, steps, bounds_override=None, polydata=None):
+        """steps: the run's (time, file) list; or, in situ (Catalyst),
+        None and the particles' vtkPolyData."""
+        if polydata is not None:
+            first, self.first_bounds = polydata_field_data(polydata)
+        else:
+            first, self.first_bounds = field_data(steps[0][1])
         self.dimension = int(first.get("dimension", (0,))[0]) or None
         # Lattice runs: particle_spacing > 0; explicit points have 0 there,
         # and then the smoothing length stands in (radius h/2).
@@ -377,12 +418,17 @@ class RunInfo:
                 b += [lo[k] if k < len(lo) else 0.0,
                       hi[k] if k < len(hi) else 0.0]
             return tuple(b)
-        # Box around the particles of (a sample of 11 of) all steps ...
-        picks = steps if len(steps) <= 11 else [
-            steps[int(round(k * (len(steps) - 1) / 10.0))] for k in range(11)]
+        # Box around the particles of (a sample of 11 of) all steps (in
+        # situ: of the first) ...
+        if steps is None:
+            boxes = [self.first_bounds]
+        else:
+            picks = steps if len(steps) <= 11 else [
+                steps[int(round(k * (len(steps) - 1) / 10.0))]
+                for k in range(11)]
+            boxes = [field_data(f)[1] for _, f in picks]
         lo, hi = [math.inf] * 3, [-math.inf] * 3
-        for _, f in picks:
-            _, b = field_data(f)
+        for b in boxes:
             if b is None:
                 continue
             for k in range(3):
@@ -501,7 +547,8 @@ def place_texts(view, size):
             rep.FontSize = lay.title_font
 
 
-def color_by(display, view, field, component, ncomp, colormap, size):
+def color_by(display, view, field, component, ncomp, colormap, size,
+             unit=None):
     if ncomp > 1:
         pv.ColorBy(display, ("POINTS", field, component))
     else:
@@ -512,11 +559,7 @@ def color_by(display, view, field, component, ncomp, colormap, size):
             raise RenderError("unknown colour preset '%s'" % colormap)
     display.SetScalarBarVisibility(view, True)
     bar = pv.GetScalarBar(lut, view)
-    # ("|v|" would be nicer, but the legend's font drops the bars)
-    title = field if ncomp == 1 else (
-        ("speed" if field == "velocity" else field + " mag.")
-        if component == "Magnitude" else "%s %s" % (field, component))
-    bar.Title = title
+    bar.Title = legend_title(field, component, ncomp, unit)
     bar.ComponentTitle = ""
     bar.Orientation = "Vertical"
     bar.HorizontalTitle = 1
@@ -533,7 +576,7 @@ def color_by(display, view, field, component, ncomp, colormap, size):
 
 
 def build_default(pvd, info, field, component, ncomp, colormap, size, up,
-                  split=False, clip=False):
+                  split=False, clip=False, unit=None):
     """Reader, particle display and view of the on-the-fly view.  Also used
     by make_states.py to build the state files (with a relative pvd).
 
@@ -556,7 +599,7 @@ def build_default(pvd, info, field, component, ncomp, colormap, size, up,
         particles, walls = split_kind(particles)
     radius = info.radius(size)
     display = show_particles(particles, view, info.dimension, radius)
-    color_by(display, view, field, component, ncomp, colormap, size)
+    color_by(display, view, field, component, ncomp, colormap, size, unit)
     if walls is not None:
         wdisp = show_particles(walls, view, info.dimension, radius)
         wdisp.ColorArrayName = ["POINTS", ""]
@@ -806,6 +849,7 @@ def render(a, pvd, steps, indices, outputs, field_arg, arrays):
 
 def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
     pv.LoadPalette("WhiteBackground")
+    units = vtp_point_units(steps[0][1])
     info = RunInfo(steps, a.bounds)
     size = a.size
     up = a.up or "z"
@@ -822,9 +866,12 @@ def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
             check_field(field, arrays, steps[0][1])
         if field_arg or a.colormap or display.ColorArrayName[1] != field:
             lut = color_by(display, view, field, comp, arrays.get(field, 1),
-                           a.colormap, size)
+                           a.colormap, size, units.get(field))
         else:
             lut = pv.GetColorTransferFunction(field)
+            # the unit of this run (a 2D state on a 3D run: Pa, not N/m)
+            pv.GetScalarBar(lut, view).Title = legend_title(
+                field, comp, arrays.get(field, 1), units.get(field))
         if field not in reader.PointData.keys():
             raise RenderError("no point array '%s' in this run; available "
                               "arrays: %s" % (field, ", ".join(
@@ -837,7 +884,7 @@ def render_views(a, pvd, steps, indices, outputs, field_arg, arrays):
         reader, display, view = build_default(
             pvd, info, field, a.component, arrays[field],
             a.colormap or DEFAULT_COLORMAP, size, up,
-            split=KIND_ARRAY in arrays, clip=a.clip)
+            split=KIND_ARRAY in arrays, clip=a.clip, unit=units.get(field))
         lut = pv.GetColorTransferFunction(field)
 
     view.StillRender()

@@ -29,6 +29,19 @@ TEST is one of:
   walls        render a synthetic run with wall particles (the `kind`
                array): walls grey and the colour range the fluid's, with
                and without a state; the same run without `kind`: no grey
+  catalyst-png sph run --catalyst catalyst_png.py under Xvfb: the in-situ
+               PNGs, checked with check_png.py
+  catalyst-same-particles
+               the particle files of a run with Catalyst bit for bit those
+               of the run without
+  catalyst-refusals
+               each bad --catalyst refused before the run (exit 2, one
+               line naming catalyst and the file, no folder)
+  catalyst-live
+               catalyst_live.py: the run goes on with no GUI; a client
+               connecting as the GUI does receives the particles live
+  units        every array of sph's files carries its unit (check_units.py,
+               2D and 3D) and every state's legend shows it
 
 Exit status 0 when the test passes.
 """
@@ -393,10 +406,307 @@ def t_walls(e):
     e.check(png, "--min-grey", "3000", expect_ok=False)
 
 
+# ---------------------------------------------------------------------------
+# Catalyst (sph run --catalyst, docs/paraview.md) and units.
+
+CATALYST_PNG = os.path.join(HERE, "catalyst_png.py")
+CATALYST_LIVE = os.path.join(HERE, "catalyst_live.py")
+
+
+def case_path(case):
+    return os.path.join(ROOT, "cases", case + ".case")
+
+
+def xvfb_sph(e, args, env=None, timeout=300):
+    """sph under xvfb-run -a, from a random display number (xvfb-run -a
+    starts at :99 and races other xvfb-runs of the machine for it), retried
+    once when the X server fails to start or goes away under it (VTK then
+    aborts: "bad X server connection"), like Env.render."""
+    import random
+    for attempt in (1, 2):
+        cmd = [e.a.xvfb_run, "-a", "-n", str(random.randint(200, 899)),
+               e.a.sph] + args
+        code, out = run(cmd, expect_ok=False, env=env, timeout=timeout)
+        if ("Xvfb failed to start" in out or
+                "bad X server connection" in out) and attempt == 1:
+            log("note: the X server failed; retrying once")
+            time.sleep(1)
+            continue
+        break
+    return code, out
+
+
+def t_catalyst_png(e):
+    """The in-situ PNG script under Xvfb: a picture at the start, every 100
+    steps and at the end (0.02 s = 400 steps: 5), each passing check_png.py
+    as render.py's pictures do; the last one as the snapshot test's. At
+    the script's default 800x800: at 480x480 the few hottest particles of
+    the corner (the top of the fluid's colour range) cover too few pixels
+    for the colour-span check (0.47 measured; 0.75 at 800x800)."""
+    e.need_tools()
+    run_dir = os.path.join(e.work, "dam_break")
+    size = ["800", "800"]
+    env = dict(os.environ, SPH_CATALYST_SIZE=" ".join(size))
+    code, _ = xvfb_sph(e, ["run", case_path("dam_break"), "--output", run_dir,
+                           "--end_time", "0.02", "--no-progress",
+                           "--catalyst", CATALYST_PNG,
+                           "--catalyst_every", "100"], env=env)
+    if code != 0:
+        raise TestFailure("sph run --catalyst failed (exit %d)" % code)
+    folder = os.path.join(run_dir, "catalyst")
+    pngs = sorted(os.listdir(folder)) if os.path.isdir(folder) else []
+    want = ["dam_break_%05d.png" % k for k in range(5)]
+    if pngs != want:
+        raise TestFailure("expected %s in %s, found %s" % (want, folder, pngs))
+    for name in pngs[:-1]:
+        e.check(os.path.join(folder, name), "--size", *size, "--time-text",
+                "--min-grey", "1000", "--centroid-box", "0", "0", "0.5", "0.5")
+    e.check(os.path.join(folder, pngs[-1]), "--size", *size, "--time-text",
+            "--min-grey", "1000", "--min-span", "0.5",
+            "--centroid-box", "0", "0", "0.5", "0.5")
+
+
+def vtp_arrays(path):
+    """Points and every point array of a .vtp, as raw bytes by name."""
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    r = vtkXMLPolyDataReader()
+    r.SetFileName(path)
+    r.Update()
+    out = r.GetOutput()
+    arrays = {"(points)": vtk_to_numpy(out.GetPoints().GetData()).tobytes()}
+    pd = out.GetPointData()
+    for k in range(pd.GetNumberOfArrays()):
+        arr = pd.GetArray(k)
+        arrays[arr.GetName()] = vtk_to_numpy(arr).tobytes()
+    return arrays
+
+
+def t_catalyst_same_particles(e):
+    """A run with Catalyst (the PNG script, rendering in the process, every
+    7 steps, out of step with the output) writes bit for bit the particle
+    files of the same run without it: every point array and the points."""
+    e.need_tools()
+    plain = os.path.join(e.work, "plain")
+    insitu = os.path.join(e.work, "insitu")
+    args = ["--end_time", "0.01", "--output_every", "50", "--no-progress"]
+    run([e.a.sph, "run", case_path("dam_break"), "--output", plain] + args)
+    code, _ = xvfb_sph(e, ["run", case_path("dam_break"), "--output", insitu]
+                       + args + ["--catalyst", CATALYST_PNG,
+                                 "--catalyst_every", "7"])
+    if code != 0:
+        raise TestFailure("sph run --catalyst failed (exit %d)" % code)
+    files = sorted(f for f in os.listdir(plain) if f.endswith(".vtp"))
+    if len(files) < 3 or files != sorted(
+            f for f in os.listdir(insitu) if f.endswith(".vtp")):
+        raise TestFailure("the two runs wrote different particle files: %s"
+                          % files)
+    pngs = os.listdir(os.path.join(insitu, "catalyst"))
+    if len(pngs) < 20:
+        raise TestFailure("Catalyst made %d pictures, expected 30" % len(pngs))
+    for f in files:
+        a, b = vtp_arrays(os.path.join(plain, f)), vtp_arrays(
+            os.path.join(insitu, f))
+        if sorted(a) != sorted(b):
+            raise TestFailure("%s: arrays %s and %s" % (f, sorted(a), sorted(b)))
+        for name in a:
+            if a[name] != b[name]:
+                raise TestFailure("%s: array %s differs with Catalyst"
+                                  % (f, name))
+        log("%s: %d arrays bit for bit the same" % (f, len(a)))
+
+
+def t_catalyst_refusals(e):
+    """Each bad --catalyst is refused before the run: exit 2, one line on
+    the output naming the key `catalyst` and the file, no output folder. A
+    script that raises during the run is reported once (one warning with
+    the step) and the run ends normally. And plain runs pay nothing: sph itself links neither Python nor
+    ParaView's Catalyst (the plugin is loaded only for --catalyst)."""
+    e.need_tools()
+    code, out = run(["ldd", e.a.sph], expect_ok=False)
+    linked = [l.split()[0] for l in out.splitlines()
+              if "python" in l.lower() or "Catalyst" in l]
+    if code != 0 or linked:
+        raise TestFailure("sph links %s: plain runs would start them"
+                          % (linked or "(ldd failed)"))
+    w = e.work
+    syntax = os.path.join(w, "syntax_error.py")
+    with open(syntax, "w") as fh:
+        fh.write("def RequestDataDescription(d):\n    pass\n"
+                 "def DoCoProcessing(d)\n    pass\n")
+    nofuncs = os.path.join(w, "no_functions.py")
+    with open(nofuncs, "w") as fh:
+        fh.write("from paraview.simple import *\nSphere()\n")
+    case = os.path.join(w, "with_catalyst.case")
+    with open(case_path("dam_break")) as fh, open(case, "w") as out:
+        out.write(fh.read() + '\ncatalyst = "%s"\n' % CATALYST_LIVE)
+    no_display = dict(os.environ)
+    no_display.pop("DISPLAY", None)
+    bad_plugin = dict(os.environ, SPH_CATALYST_PLUGIN=os.path.join(
+        w, "libsph_catalyst_missing.so"))
+    refusals = [
+        ("missing script", ["--catalyst", os.path.join(w, "missing.py")],
+         None, "missing.py"),
+        ("not a file", ["--catalyst", w], None, w),
+        ("syntax error", ["--catalyst", syntax], None, "syntax_error.py"),
+        ("no Catalyst functions", ["--catalyst", nofuncs], None,
+         "no_functions.py"),
+        ("plugin not loadable", ["--catalyst", CATALYST_LIVE], bad_plugin,
+         "libsph_catalyst_missing.so"),
+        ("PNG script without DISPLAY", ["--catalyst", CATALYST_PNG],
+         no_display, "catalyst_png.py"),
+        ("catalyst_every 0", ["--catalyst", CATALYST_LIVE,
+                              "--catalyst_every", "0"], None,
+         "catalyst_every"),
+    ]
+    for k, (what, flags, env, file_word) in enumerate(refusals):
+        out_dir = os.path.join(w, "run%d" % k)
+        log("-- %s" % what)
+        code, out = run([e.a.sph, "run", case_path("dam_break"), "--output",
+                         out_dir, "--end_time", "0.001"] + flags,
+                        expect_ok=False, env=env)
+        expect_refusal(code, out, out_dir, ["catalyst", file_word])
+    log("-- a script that raises during the run")
+    raising = os.path.join(w, "raises_at_third_call.py")
+    with open(raising, "w") as fh:
+        fh.write("calls = [0]\n"
+                 "def RequestDataDescription(d):\n"
+                 "    d.GetInputDescriptionByName('input').AllFieldsOn()\n"
+                 "def DoCoProcessing(d):\n"
+                 "    calls[0] += 1\n"
+                 "    if calls[0] == 3:\n"
+                 "        raise ValueError('third call')\n")
+    out_dir = os.path.join(w, "run_raising")
+    code, out = run([e.a.sph, "run", case_path("dam_break"), "--output",
+                     out_dir, "--end_time", "0.005", "--no-progress",
+                     "--catalyst", raising, "--catalyst_every", "20"],
+                    expect_ok=False, env=no_display)
+    warnings = [l for l in out.splitlines() if l.startswith("sph: warning:")]
+    if code != 0 or not os.path.isfile(os.path.join(out_dir, "dam_break.pvd")):
+        raise TestFailure("a script failing during the run stopped it "
+                          "(exit %d)" % code)
+    if len(warnings) != 1 or not all(
+            word in warnings[0] for word in ("catalyst", "raises_at_third_call.py",
+                                             "step 40", "third call")):
+        raise TestFailure("expected one warning naming catalyst, the script, "
+                          "step 40 and the error, got %s" % warnings)
+    log("-- catalyst in a case file")
+    out_dir = os.path.join(w, "run_case_key")
+    code, out = run([e.a.sph, "run", case, "--output", out_dir],
+                    expect_ok=False)
+    expect_refusal(code, out, out_dir, ["catalyst", "with_catalyst.case",
+                                        "--catalyst"])
+
+
+def expect_refusal(code, out, out_dir, words):
+    lines = [l for l in out.splitlines() if l.strip()]
+    if code != 2:
+        raise TestFailure("expected exit status 2, got %d" % code)
+    if len(lines) != 1 or not lines[0].startswith("sph: error: "):
+        raise TestFailure("expected one 'sph: error:' line, got %d lines"
+                          % len(lines))
+    for w in words:
+        if w not in lines[0]:
+            raise TestFailure("the message does not name %r" % w)
+    if os.path.exists(out_dir):
+        raise TestFailure("the refused run made its folder %s" % out_dir)
+
+
+def free_port():
+    import socket
+    with socket.socket() as s:
+        s.bind(("localhost", 0))
+        return s.getsockname()[1]
+
+
+def t_catalyst_live(e):
+    """catalyst_live.py: (1) with no ParaView listening (no DISPLAY either)
+    the run goes on and ends normally; (2) a client that connects as the
+    GUI's Catalyst > Connect does (paraview.live) receives the particles
+    live: the run's number of points, with its arrays."""
+    e.need_tools()
+    no_display = dict(os.environ, SPH_CATALYST_PORT=str(free_port()))
+    no_display.pop("DISPLAY", None)
+    alone = os.path.join(e.work, "alone")
+    code, _ = run([e.a.sph, "run", case_path("dam_break"), "--output", alone,
+                   "--end_time", "0.005", "--no-progress",
+                   "--catalyst", CATALYST_LIVE, "--catalyst_every", "20"],
+                  expect_ok=False, env=no_display)
+    if code != 0 or not os.path.isfile(os.path.join(alone, "dam_break.pvd")):
+        raise TestFailure("with no GUI listening the run did not finish "
+                          "(exit %d)" % code)
+    live_dir = os.path.join(e.work, "live")
+    cmd = [e.a.xvfb_run, "-a", e.a.pvpython, "--disable-xdisplay-test",
+           os.path.join(HERE, "catalyst_live_check.py"), str(free_port()),
+           "--", e.a.sph, "run", case_path("dam_break"), "--output", live_dir,
+           "--end_time", "0.05", "--output_every", "2000", "--no-progress",
+           "--catalyst", CATALYST_LIVE, "--catalyst_every", "20"]
+    code, out = run(cmd, expect_ok=False, timeout=170)
+    summary = [l for l in out.splitlines() if l.startswith("live summary:")]
+    if code != 0 or not summary:
+        raise TestFailure("the live client got nothing (exit %d)" % code)
+    first = sorted(f for f in os.listdir(live_dir) if f.endswith(".vtp"))[0]
+    arrays = vtp_arrays(os.path.join(live_dir, first))
+    n = len(arrays["(points)"]) // 24
+    want = "live summary: max points %d, arrays %s," % (
+        n, ", ".join(sorted(k for k in arrays if k != "(points)")))
+    if not summary[0].startswith(want):
+        raise TestFailure("expected %r, got %r" % (want, summary[0]))
+
+
+def t_units(e):
+    """Every point array of sph's files carries its unit, per dimension,
+    as pvpython reads them (check_units.py: a 2D run with walls and
+    continuity density, a 3D one with XSPH, a 2D one with surface
+    tension), and every state's legend title shows the unit of its case's
+    dimension."""
+    e.need_tools()
+    files = []
+    for case in ("dam_break", "dam_break_3d", "droplet_surface_tension"):
+        out = os.path.join(e.work, case)
+        run([e.a.sph, "run", case_path(case), "--output", out,
+             "--end_time", "0.0004", "--no-progress"])
+        files += [os.path.join(out, f) for f in sorted(os.listdir(out))
+                  if f.endswith(".vtp")][-1:]
+    code, _ = run([e.a.xvfb_run, "-a", e.a.pvpython, "--disable-xdisplay-test",
+                   os.path.join(HERE, "check_units.py")] + files,
+                  expect_ok=False)
+    if code != 0:
+        raise TestFailure("check_units.py found arrays without their unit")
+    import glob
+    for state in sorted(glob.glob(os.path.join(HERE, "*.pvsm"))):
+        title = legend_titles(state)
+        case = state_case(state)
+        from make_states import case_dimension
+        dim = case_dimension(case)
+        want = {"pressure": {2: "pressure [N/m]", 3: "pressure [Pa]"}[dim],
+                "velocity": "speed [m/s]"}
+        if not title or not any(t in want.values() for t in title):
+            raise TestFailure("%s (%s, %dD): legend %s, expected one of %s"
+                              % (os.path.basename(state), case, dim, title,
+                                 sorted(want.values())))
+        log("%s: legend %s" % (os.path.basename(state), title))
+
+
+def legend_titles(state):
+    """The Title values of the scalar bars of a .pvsm."""
+    titles = []
+    for proxy in ET.parse(state).getroot().iter("Proxy"):
+        if proxy.get("type") != "ScalarBarWidgetRepresentation":
+            continue
+        for prop in proxy.iter("Property"):
+            if prop.get("name") == "Title":
+                titles += [el.get("value") for el in prop.iter("Element")]
+    return titles
+
+
 TESTS = {"snapshot": t_snapshot, "state": t_state,
          "default-view": t_default_view, "synthetic-3d": t_synthetic_3d,
          "errors": t_errors, "checker": t_checker, "gui": t_gui,
-         "walls": t_walls}
+         "walls": t_walls, "catalyst-png": t_catalyst_png,
+         "catalyst-same-particles": t_catalyst_same_particles,
+         "catalyst-refusals": t_catalyst_refusals,
+         "catalyst-live": t_catalyst_live, "units": t_units}
 
 
 def main():

@@ -202,6 +202,7 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
   if (c.probePoints.empty())
     for (const char* key : {"probe_interpolation", "probe_radius", "probe_window"})
       note(key, "there are no point probes (probe_points)");
+  if (c.catalyst.empty()) note("catalyst_every", "there is no Catalyst script (catalyst)");
   if (c.outputInterval > 0) note("output_every", "output_interval is used");
   else note("output_interval", "output_interval is off; output_every is used");
   return unused;

@@ -322,6 +322,14 @@ const std::vector<KeySpec>& caseKeys() {
       {"resume", G::kOutput, &C::resume, "",
        "Continue the run in this folder from its last snapshot, into the same series (no case file needed)", {},
        "none", nullptr},
+      {"catalyst", G::kOutput, &C::catalyst, "",
+       "ParaView Catalyst pipeline script (paraview/catalyst_png.py, catalyst_live.py): the particles are handed "
+       "to it in situ, besides the usual output (command line only, not in a case file)",
+       {}, "none", nullptr},
+      {"catalyst_every", G::kOutput, &C::catalystEvery, "",
+       "With catalyst: hand the particles to the script at the start, every N steps and at the end (command line "
+       "only)",
+       count(1, 1e12), nullptr, nullptr},
   };
   return keys;
 }
@@ -430,8 +438,10 @@ std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
 
 bool isRunOnlyKey(const KeySpec& k) {
   const std::string name = k.name;
-  return name == "resume" || name == "overwrite";
+  return name == "resume" || name == "overwrite" || isCommandLineOnlyKey(name);
 }
+
+bool isCommandLineOnlyKey(const std::string& name) { return name == "catalyst" || name == "catalyst_every"; }
 
 namespace {
 const char* const kResumeKeys[] = {"end_time", "output_every", "output_interval", "threads", "progress"};

@@ -72,6 +72,9 @@ class CaseFileFormat : public CLI::Config {
   std::vector<CLI::ConfigItem> from_config(std::istream& in) const override {
     std::vector<CLI::ConfigItem> out;
     for (sph::CaseEntry& e : sph::readCaseFile(in)) {
+      if (sph::isCommandLineOnlyKey(e.key))
+        throw sph::CaseFileError(e.line, e.key + " is a command-line key (how one run is watched, not part of the "
+                                         "case): give it as --" + e.key + " to sph run");
       lines_[e.key] = e.line;
       out.push_back(CLI::ConfigItem{{}, std::move(e.key), std::move(e.values)});
     }

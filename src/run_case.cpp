@@ -5,6 +5,7 @@
 
 #include "sph/case_file.hpp"
 #include "sph/case_keys.hpp"
+#include "sph/io/catalyst.hpp"
 #include "sph/io/atomic_file.hpp"
 #include "sph/io/number_format.hpp"
 #include "sph/io/probe_files.hpp"
@@ -33,6 +34,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <new>
 #include <optional>
 #include <ostream>
@@ -331,6 +333,19 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     return kBadInput;
   }
 
+  // The Catalyst script, when given: loaded (ParaView's start-up) after the
+  // case's own checks and before anything is written, so that a missing or
+  // broken script is refused with no folder made.
+  std::unique_ptr<Catalyst> catalyst;
+  if (!c.catalyst.empty()) {
+    try {
+      catalyst = std::make_unique<Catalyst>(c.catalyst, c.output, c.name);
+    } catch (const CaseError& e) {
+      err << "sph: error: " << escapeControl(e.what()) << "\n";
+      return kBadInput;
+    }
+  }
+
   // Everything that can be checked has been: now, and only now, write.
   const std::filesystem::path dir(c.output);
   std::error_code ec;
@@ -395,6 +410,20 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   CaseConfig probeKernel = c;
   if (probeKernel.kernel.empty()) probeKernel.kernel = "wendland_c2", probeKernel.h = c.h / 2;
   RunOutput<D> output(dir, c.name, info, record, adaptive, ProbeFiles<D>(c, makeKernel<D>(probeKernel)));
+  // Hands the particles to Catalyst; a script that fails during the run is
+  // reported once and left out for the rest of it (the run and its files
+  // go on: they are what the run is for).
+  auto offerToCatalyst = [&](bool last) {
+    if (!catalyst) return;
+    SnapshotInfo now = info;
+    now.time = scene.time();
+    now.step = scene.stepIndex();
+    const std::string failure = catalyst->offer<D>(scene.particles(), now, last);
+    if (failure.empty()) return;
+    err << "sph: warning: catalyst: script " << escapeControl(catalyst->script()) << " failed at step "
+        << scene.stepIndex() << ": " << escapeControl(failure) << "; Catalyst is off for the rest of the run\n";
+    catalyst.reset();
+  };
   if (resuming) output.resumeAfter(resumeStep, resumeTime);
 
   // Steps of a fixed-dt run: ceil((end - start) / dt), counted from the start.
@@ -469,6 +498,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     saveRecord();
     if (!resuming) output.write(scene);
     saveRecord();
+    offerToCatalyst(finished());
     while (!finished()) {
       if (stopSignal() != 0) break;
       const auto t0 = Clock::now();
@@ -544,6 +574,8 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
         saveRecord();
         if (byInterval) nextOutput = outputTime(outputIndex(scene.time()) + 1);
       }
+      if (catalyst && (scene.stepIndex() % c.catalystEvery == 0 || finished() || stopSignal() != 0))
+        offerToCatalyst(finished() || stopSignal() != 0);
       if (c.progress && secondsSince(lastProgress) > progressEvery) {
         lastProgress = Clock::now();
         const double elapsed = secondsSince(wall0);

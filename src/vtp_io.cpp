@@ -1,11 +1,13 @@
 #include "sph/io/vtp_io.hpp"
 
 #include "sph/io/atomic_file.hpp"
+#include "sph/io/snapshot_polydata.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
+#include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -25,8 +27,8 @@ namespace sph {
 namespace {
 
 template <int D>
-vtkNew<vtkDoubleArray> vectorArray(const char* name, const std::vector<Vec<D>>& v) {
-  vtkNew<vtkDoubleArray> arr;
+vtkSmartPointer<vtkDoubleArray> vectorArray(const char* name, const std::vector<Vec<D>>& v) {
+  auto arr = vtkSmartPointer<vtkDoubleArray>::New();
   arr->SetName(name);
   arr->SetNumberOfComponents(3);
   arr->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
@@ -38,8 +40,8 @@ vtkNew<vtkDoubleArray> vectorArray(const char* name, const std::vector<Vec<D>>& 
   return arr;
 }
 
-vtkNew<vtkDoubleArray> scalarArray(const char* name, const std::vector<Real>& s) {
-  vtkNew<vtkDoubleArray> arr;
+vtkSmartPointer<vtkDoubleArray> scalarArray(const char* name, const std::vector<Real>& s) {
+  auto arr = vtkSmartPointer<vtkDoubleArray>::New();
   arr->SetName(name);
   arr->SetNumberOfValues(static_cast<vtkIdType>(s.size()));
   for (std::size_t i = 0; i < s.size(); ++i) arr->SetValue(static_cast<vtkIdType>(i), s[i]);
@@ -90,8 +92,7 @@ void keepCompressionBuffersOnHeap() {
 }  // namespace
 
 template <int D>
-void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo& info) {
-  keepCompressionBuffersOnHeap();
+vtkSmartPointer<vtkPolyData> snapshotPolyData(const Particles<D>& P, const SnapshotInfo& info) {
   const auto n = static_cast<vtkIdType>(P.size());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -111,17 +112,21 @@ void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo
     verts->SetData(offsets, connectivity);
   }
 
-  vtkNew<vtkPolyData> poly;
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(points);
   poly->SetVerts(verts);
-  // Every allocated field of the table that has a snapshot name.
+  // Every allocated field of the table that has a snapshot name, with its unit.
   vtkPointData* pd = poly->GetPointData();
   P.forEachField([&](const FieldInfo& f, const auto& field) {
     if (f.vtkName == nullptr || field.empty()) return;
     using T = typename std::decay_t<decltype(field)>::value_type;
-    if constexpr (std::is_same_v<T, Vec<D>>) pd->AddArray(vectorArray<D>(f.vtkName, field));
-    else if constexpr (std::is_same_v<T, Real>) pd->AddArray(scalarArray(f.vtkName, field));
-    else if constexpr (std::is_integral_v<T>) pd->AddArray(integerArray(f.vtkName, field));
+    vtkSmartPointer<vtkDataArray> arr;
+    if constexpr (std::is_same_v<T, Vec<D>>) arr = vectorArray<D>(f.vtkName, field);
+    else if constexpr (std::is_same_v<T, Real>) arr = scalarArray(f.vtkName, field);
+    else if constexpr (std::is_integral_v<T>) arr = integerArray(f.vtkName, field);
+    if (!arr) return;
+    arr->GetInformation()->Set(vtkDataArray::UNITS_LABEL(), f.unit(D));
+    pd->AddArray(arr);
   });
   pd->SetActiveScalars("pressure");
 
@@ -136,7 +141,13 @@ void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo
     if (values.empty()) continue;
     fd->AddArray(scalarArray(name, values));
   }
+  return poly;
+}
 
+template <int D>
+void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo& info) {
+  keepCompressionBuffersOnHeap();
+  const vtkSmartPointer<vtkPolyData> poly = snapshotPolyData<D>(P, info);
   vtkNew<vtkXMLPolyDataWriter> writer;
   const std::string tmp = temporaryName(path);
   writer->SetFileName(tmp.c_str());
@@ -153,6 +164,8 @@ void writeVtp(const std::string& path, const Particles<D>& P, const SnapshotInfo
   commitTemporary(path);
 }
 
+template vtkSmartPointer<vtkPolyData> snapshotPolyData<2>(const Particles<2>&, const SnapshotInfo&);
+template vtkSmartPointer<vtkPolyData> snapshotPolyData<3>(const Particles<3>&, const SnapshotInfo&);
 template void writeVtp<2>(const std::string&, const Particles<2>&, const SnapshotInfo&);
 template void writeVtp<3>(const std::string&, const Particles<3>&, const SnapshotInfo&);
 

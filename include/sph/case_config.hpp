@@ -137,6 +137,8 @@ struct CaseConfig {
   bool progress = true;              // progress line when stderr is a terminal
   bool overwrite = false;            // replace another run's files in the output folder
   std::string resume;                // continue the run in this folder
+  std::string catalyst;              // ParaView Catalyst pipeline script (empty: off), command line only
+  long catalystEvery = 10;           // hand the particles to it every this many steps
 
   // How sph was called (for run.json).
   std::vector<std::string> commandLine;

@@ -58,9 +58,14 @@ void checkKeyRanges(const CaseConfig& c);
 // "" for an empty list or text (nothing given).
 std::string keyValueText(const CaseConfig& c, const KeySpec& k);
 
-// Keys that say how to run, not what (resume, overwrite): not part of a
-// resolved case.
+// Keys that say how to run, not what (resume, overwrite, catalyst,
+// catalyst_every): not part of a resolved case, and a resume may give them.
 bool isRunOnlyKey(const KeySpec& k);
+
+// Run-only keys a case file may not hold (catalyst, catalyst_every): an
+// in-situ pipeline is how one run is looked at, not part of the case, so a
+// case file and its resolved run.case repeat the run without ParaView.
+bool isCommandLineOnlyKey(const std::string& name);
 
 // Keys a resumed run may set anew (end_time, output_every, output_interval,
 // threads, progress): the rest would change the run it continues.

@@ -28,9 +28,9 @@ enum FieldId : unsigned {
   kFieldV,         // velocity at integer time [m/s]
   kFieldA,         // acceleration [m/s^2]
   kFieldRho,       // density [kg/m^D]
-  kFieldDrho,      // density rate d rho/dt (continuity density)
+  kFieldDrho,      // density rate d rho/dt (continuity density) [kg/(m^D s)]
   kFieldP,         // pressure [Pa, N/m in 2D]
-  kFieldM,         // mass [kg, kg/m in 2D]
+  kFieldM,         // mass [kg, also in 2D: rho0 [kg/m^2] times dx^2]
   kFieldId,        // stable identity
   kFieldKind,      // 0 fluid, 1 wall (walls are contiguous, after the fluid)
   kFieldVHalf,     // leap-frog half-step velocity
@@ -65,33 +65,36 @@ struct FieldInfo {
   const char* name;      // name in code and messages
   FieldRole role;
   const char* vtkName;   // point-data array in a snapshot; nullptr: not written
+  const char* unit3;     // SI unit in 3D ("1": dimensionless, a count or a label)
+  const char* unit2;     // ... in 2D, per unit depth: density kg/m^2, pressure N/m
+  const char* unit(int dimension) const { return dimension == 2 ? unit2 : unit3; }
 };
 
 inline constexpr FieldInfo kFieldTable[kFieldCount] = {
-    {kFieldX, "x", FieldRole::kState, nullptr},  // the points themselves
-    {kFieldV, "v", FieldRole::kState, "velocity"},
-    {kFieldA, "a", FieldRole::kRate, "acceleration"},
-    {kFieldRho, "rho", FieldRole::kState, "density"},
-    {kFieldDrho, "drho", FieldRole::kRate, "density_rate"},
-    {kFieldP, "p", FieldRole::kDerived, "pressure"},
-    {kFieldM, "m", FieldRole::kState, "mass"},
-    {kFieldId, "id", FieldRole::kState, "id"},
-    {kFieldKind, "kind", FieldRole::kState, "kind"},
-    {kFieldVHalf, "vHalf", FieldRole::kStage, nullptr},
-    {kFieldC, "c", FieldRole::kDerived, nullptr},
-    {kFieldVXsph, "vXsph", FieldRole::kDerived, "xsph_velocity"},
-    {kFieldVWall, "vWall", FieldRole::kDerived, nullptr},
-    {kFieldX0, "x0", FieldRole::kStage, nullptr},
-    {kFieldV0, "v0", FieldRole::kStage, nullptr},
-    {kFieldRho0, "rho0", FieldRole::kStage, nullptr},
-    {kFieldDx, "dx", FieldRole::kStage, nullptr},
-    {kFieldDv, "dv", FieldRole::kStage, nullptr},
-    {kFieldDrhoSum, "drhoSum", FieldRole::kStage, nullptr},
-    {kFieldRhoReinit, "rhoReinit", FieldRole::kDerived, nullptr},
-    {kFieldCspmL, "cspmL", FieldRole::kDerived, nullptr},
-    {kFieldColour, "colour", FieldRole::kState, "colour"},
-    {kFieldColourNormal, "colourNormal", FieldRole::kDerived, "colour_normal"},
-    {kFieldCurvature, "curvature", FieldRole::kDerived, "curvature"},
+    {kFieldX, "x", FieldRole::kState, nullptr, "m", "m"},  // the points themselves
+    {kFieldV, "v", FieldRole::kState, "velocity", "m/s", "m/s"},
+    {kFieldA, "a", FieldRole::kRate, "acceleration", "m/s^2", "m/s^2"},
+    {kFieldRho, "rho", FieldRole::kState, "density", "kg/m^3", "kg/m^2"},
+    {kFieldDrho, "drho", FieldRole::kRate, "density_rate", "kg/m^3/s", "kg/m^2/s"},
+    {kFieldP, "p", FieldRole::kDerived, "pressure", "Pa", "N/m"},
+    {kFieldM, "m", FieldRole::kState, "mass", "kg", "kg"},
+    {kFieldId, "id", FieldRole::kState, "id", "1", "1"},
+    {kFieldKind, "kind", FieldRole::kState, "kind", "1", "1"},
+    {kFieldVHalf, "vHalf", FieldRole::kStage, nullptr, "m/s", "m/s"},
+    {kFieldC, "c", FieldRole::kDerived, nullptr, "m/s", "m/s"},
+    {kFieldVXsph, "vXsph", FieldRole::kDerived, "xsph_velocity", "m/s", "m/s"},
+    {kFieldVWall, "vWall", FieldRole::kDerived, nullptr, "m/s", "m/s"},
+    {kFieldX0, "x0", FieldRole::kStage, nullptr, "m", "m"},
+    {kFieldV0, "v0", FieldRole::kStage, nullptr, "m/s", "m/s"},
+    {kFieldRho0, "rho0", FieldRole::kStage, nullptr, "kg/m^3", "kg/m^2"},
+    {kFieldDx, "dx", FieldRole::kStage, nullptr, "m/s", "m/s"},
+    {kFieldDv, "dv", FieldRole::kStage, nullptr, "m/s^2", "m/s^2"},
+    {kFieldDrhoSum, "drhoSum", FieldRole::kStage, nullptr, "kg/m^3/s", "kg/m^2/s"},
+    {kFieldRhoReinit, "rhoReinit", FieldRole::kDerived, nullptr, "kg/m^3", "kg/m^2"},
+    {kFieldCspmL, "cspmL", FieldRole::kDerived, nullptr, "1", "1"},
+    {kFieldColour, "colour", FieldRole::kState, "colour", "1", "1"},
+    {kFieldColourNormal, "colourNormal", FieldRole::kDerived, "colour_normal", "1/m", "1/m"},
+    {kFieldCurvature, "curvature", FieldRole::kDerived, "curvature", "1/m", "1/m"},
 };
 
 constexpr bool isPermuted(FieldRole r) { return r == FieldRole::kState || r == FieldRole::kStage; }

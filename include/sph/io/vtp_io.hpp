@@ -5,7 +5,9 @@
 // Points are 3D (z = 0 in 2D) with one vertex cell each. Point data: every
 // allocated field of the field table that has a snapshot name (fields.hpp):
 // velocity, acceleration (3 components, also in 2D), density, pressure,
-// mass, id, and when present density_rate, kind, xsph_velocity. Field data:
+// mass, id, and when present density_rate, kind, xsph_velocity, colour,
+// colour_normal, curvature, each with its SI unit as the UNITS_LABEL
+// information key (Pa or N/m, ...: snapshot_polydata.hpp). Field data:
 // TimeValue (ParaView's time key), step, smoothing_length, dimension,
 // particle_spacing, and domain_min/domain_max (D values each) when the
 // scene has walls.

@@ -1,0 +1,92 @@
+// Loads the Catalyst plugin with dlopen and hands it the particles
+// (sph/io/catalyst.hpp; the plugin's C interface is sph/io/catalyst_plugin.h).
+#include "sph/io/catalyst.hpp"
+
+#include "sph/case_config.hpp"
+#include "sph/io/catalyst_plugin.h"
+#include "sph/io/snapshot_polydata.hpp"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace sph {
+
+struct Catalyst::Plugin {
+  void* handle = nullptr;
+  int (*abi)() = nullptr;
+  int (*initialize)(const char*, const char*, const char*, char*, size_t) = nullptr;
+  int (*request)(double, long, int, char*, size_t) = nullptr;
+  int (*coprocess)(void*, char*, size_t) = nullptr;
+  void (*finalize)() = nullptr;
+  bool running = false;
+  char error[1024] = {};
+};
+
+std::string catalystPluginPath() {
+  if (const char* env = std::getenv("SPH_CATALYST_PLUGIN"); env && *env) return env;
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ((ec ? std::filesystem::path(".") : exe.parent_path()) / "libsph_catalyst.so").string();
+}
+
+namespace {
+template <class F>
+void symbol(void* handle, const char* name, F& f, const std::string& path) {
+  f = reinterpret_cast<F>(dlsym(handle, name));
+  if (!f) throw CaseError("catalyst: the plugin " + path + " cannot be used: it has no " + name);
+}
+}  // namespace
+
+Catalyst::Catalyst(const std::string& script, const std::string& runFolder, const std::string& runName)
+    : plugin_(std::make_unique<Plugin>()), script_(script) {
+  std::error_code ec;
+  if (!std::filesystem::exists(script, ec))
+    throw CaseError("catalyst: script " + script + " does not exist");
+  if (!std::filesystem::is_regular_file(script, ec))
+    throw CaseError("catalyst: " + script + " is not a file (a Catalyst pipeline script, .py)");
+  if (access(script.c_str(), R_OK) != 0) throw CaseError("catalyst: script " + script + " cannot be read");
+  const std::string path = catalystPluginPath();
+  // RTLD_GLOBAL: Python's extension modules, imported later by the
+  // script, take the interpreter's symbols from the global scope.
+  plugin_->handle = dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL);
+  if (!plugin_->handle) {
+    const char* why = dlerror();
+    throw CaseError("catalyst: the plugin " + path + " cannot be loaded (" + (why ? why : "?") +
+                    "): build it with `cmake --build build --target sph_catalyst`");
+  }
+  symbol(plugin_->handle, "sph_catalyst_abi", plugin_->abi, path);
+  if (plugin_->abi() != SPH_CATALYST_ABI)
+    throw CaseError("catalyst: the plugin " + path + " is of another sph version: rebuild it");
+  symbol(plugin_->handle, "sph_catalyst_initialize", plugin_->initialize, path);
+  symbol(plugin_->handle, "sph_catalyst_request", plugin_->request, path);
+  symbol(plugin_->handle, "sph_catalyst_coprocess", plugin_->coprocess, path);
+  symbol(plugin_->handle, "sph_catalyst_finalize", plugin_->finalize, path);
+  const std::string absolute = std::filesystem::absolute(script, ec).lexically_normal().string();
+  const std::string folder = std::filesystem::absolute(runFolder, ec).lexically_normal().string();
+  if (plugin_->initialize(absolute.c_str(), folder.c_str(), runName.c_str(), plugin_->error, sizeof plugin_->error) != 0)
+    throw CaseError("catalyst: script " + script + " " + plugin_->error);
+  plugin_->running = true;
+}
+
+Catalyst::~Catalyst() {
+  // The plugin stays loaded: ParaView and Python do not unload cleanly.
+  if (plugin_ && plugin_->running) plugin_->finalize();
+}
+
+template <int D>
+std::string Catalyst::offer(const Particles<D>& P, const SnapshotInfo& info, bool last) {
+  const int wanted = plugin_->request(info.time, info.step, last ? 1 : 0, plugin_->error, sizeof plugin_->error);
+  if (wanted < 0) return plugin_->error;
+  if (wanted == 0) return "";
+  const vtkSmartPointer<vtkPolyData> poly = snapshotPolyData<D>(P, info);
+  if (plugin_->coprocess(poly.GetPointer(), plugin_->error, sizeof plugin_->error) != 0) return plugin_->error;
+  return "";
+}
+
+template std::string Catalyst::offer<2>(const Particles<2>&, const SnapshotInfo&, bool);
+template std::string Catalyst::offer<3>(const Particles<3>&, const SnapshotInfo&, bool);
+
+}  // namespace sph
