@@ -20,6 +20,7 @@
 // file, with its log output captured (its first error becomes our message)
 // and only the point arrays sph uses; last, the values are checked: finite
 // positions and velocities, masses > 0, unique ids, TimeValue finite and >= 0.
+#include "sph/io/number_format.hpp"
 #include "sph/io/vtp_io.hpp"
 
 #include <vtkDataArray.h>
@@ -219,12 +220,6 @@ std::uint64_t typeSize(const std::string& type) {
       {"UInt32", 4}, {"Int64", 8}, {"UInt64", 8}, {"Float32", 4}, {"Float64", 8}};
   const auto it = sizes.find(type);
   return it == sizes.end() ? 0 : it->second;
-}
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
 }
 
 bool isFloatType(const std::string& type) { return type == "Float32" || type == "Float64"; }
@@ -685,7 +680,7 @@ VtpParticles readChecked(const std::string& path) {
     for (std::size_t i = 0; i < count; ++i) {
       out.m[i] = m->GetTuple1(static_cast<vtkIdType>(i));
       if (!(std::isfinite(out.m[i]) && out.m[i] > 0))
-        throw Problem("particle " + std::to_string(i) + " has mass " + number(out.m[i]) +
+        throw Problem("particle " + std::to_string(i) + " has mass " + significant(out.m[i]) +
                       ": masses must be finite and > 0");
     }
   }
@@ -730,7 +725,7 @@ VtpParticles readChecked(const std::string& path) {
     out.kind.resize(count);
     for (std::size_t i = 0; i < count; ++i) {
       const double value = k->GetTuple1(static_cast<vtkIdType>(i));
-      if (value != 0 && value != 1) throw Problem("particle " + std::to_string(i) + " has kind " + number(value) + ": it must be 0 (fluid) or 1 (wall)");
+      if (value != 0 && value != 1) throw Problem("particle " + std::to_string(i) + " has kind " + significant(value) + ": it must be 0 (fluid) or 1 (wall)");
       out.kind[i] = static_cast<std::uint8_t>(value);
     }
   }
@@ -738,7 +733,7 @@ VtpParticles readChecked(const std::string& path) {
     vtkDataArray* st = poly->GetFieldData()->GetArray("step");
     if (!st || st->GetNumberOfTuples() < 1) throw Problem("VTK did not read its step");
     const double value = st->GetTuple1(0);
-    if (!(value >= 0 && value <= 1e15)) throw Problem("step = " + number(value) + ": it must be >= 0");
+    if (!(value >= 0 && value <= 1e15)) throw Problem("step = " + significant(value) + ": it must be >= 0");
     out.step = static_cast<long>(value);
   }
   if (L.time) {
@@ -746,7 +741,7 @@ VtpParticles readChecked(const std::string& path) {
     if (!t || t->GetNumberOfTuples() < 1) throw Problem("VTK did not read its TimeValue");
     out.time = t->GetTuple1(0);
     if (!(std::isfinite(out.time) && out.time >= 0))
-      throw Problem("TimeValue = " + number(out.time) + ": it must be finite and >= 0");
+      throw Problem("TimeValue = " + significant(out.time) + ": it must be finite and >= 0");
   }
   return out;
 }

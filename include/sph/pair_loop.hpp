@@ -19,10 +19,11 @@
 // that a case does not enable is not in the pack.
 // Gather form: particle i writes only its own rates (no atomics, results
 // independent of the thread count).
-// A gradient correction (passes/cspm_correction.hpp) gives the pair its
-// corrected gradient gradWC = L_i grad_i W, used by the first-derivative
-// terms (pressure, continuity); without one (NoGradientCorrection) gradWC
-// is grad W itself and the compiler keeps one value.
+// A gradient correction gives the pair its corrected gradient
+// gradWC = L_i grad_i W (GradientCorrection with the CSPM matrices of
+// passes/cspm_correction.hpp), used by the pressure term; without one
+// (NoGradientCorrection, or GradientCorrection with no matrices) gradWC is
+// grad W itself.
 //
 // Periodic axes: r_ij is the minimum image (periodic_box.hpp). The
 // separation is chosen once per loop (NeighbourList::withSeparation), so a
@@ -60,9 +61,21 @@ struct Pair {
 
 // No gradient correction: gradWC = gradW.
 struct NoGradientCorrection {
-  static constexpr bool kCorrects = false;
   template <int D>
   const Vec<D>& operator()(std::uint32_t, const Vec<D>& gradW) const { return gradW; }
+};
+
+// A gradient correction chosen at run time: gradWC = L_i grad W when the
+// case has the matrices L (CSPM, passes/cspm_correction.hpp), grad W itself
+// when L is null. The branch is the same for every pair of a loop, so it
+// costs next to nothing, and the force loop is compiled once for both.
+template <int D>
+struct GradientCorrection {
+  const Mat<D>* L = nullptr;
+  Vec<D> operator()(std::uint32_t i, const Vec<D>& gradW) const {
+    if (L) return L[i] * gradW;
+    return gradW;
+  }
 };
 
 template <int D>
@@ -85,17 +98,23 @@ struct PackTraits<std::tuple<T...>> {
 };
 
 // The bit of an evaluator that ran: its `bit`, unless it is switched off at
-// run time (an evaluator with active() == false).
+// run time (an evaluator with active() == false), or the bits() it names at
+// run time (one evaluator that stands for two passes).
 template <class T, class = void>
 struct HasActive : std::false_type {};
 template <class T>
 struct HasActive<T, std::void_t<decltype(std::declval<const T&>().active())>> : std::true_type {};
+template <class T, class = void>
+struct HasBits : std::false_type {};
+template <class T>
+struct HasBits<T, std::void_t<decltype(std::declval<const T&>().bits())>> : std::true_type {};
 
 template <class Pack>
 unsigned packBits(const Pack& pack) {
   auto one = [](const auto& e) -> unsigned {
     using T = std::decay_t<decltype(e)>;
-    if constexpr (HasActive<T>::value) return e.active() ? T::bit : 0u;
+    if constexpr (HasBits<T>::value) return e.bits();
+    else if constexpr (HasActive<T>::value) return e.active() ? T::bit : 0u;
     else return T::bit;
   };
   return std::apply([&](const auto&... t) { return (one(t) | ... | 0u); }, pack);
@@ -110,7 +129,7 @@ inline void addPair(const Pack& pack, const Pair<D>& c, const Particles<D>& P, P
 // (FreeSpace or MinimumImage).
 // `correct` gives the corrected gradient gradWC.
 template <int D, class Kernel, class Sep = FreeSpace, class Correction = NoGradientCorrection>
-inline Pair<D> makePair(std::uint32_t i, std::uint32_t j, const Vec<D>& xi, const Vec<D>& xj,
+[[gnu::always_inline]] inline Pair<D> makePair(std::uint32_t i, std::uint32_t j, const Vec<D>& xi, const Vec<D>& xj,
                         const Kernel& kernel, Real invSupport, const Sep& sep = {}, const Correction& correct = {}) {
   Pair<D> c;
   c.i = i;

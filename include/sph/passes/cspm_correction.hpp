@@ -11,8 +11,8 @@
 // (W'/r) (x_i - x_k), so M_i = -sum_k V_k (W'/r) r_ik r_ik^T is symmetric
 // (no question of which side L_i multiplies) and ~ identity inside a full
 // support. This pass computes L_i into the field cspmL before the forces;
-// the pair loop hands each fluid pair gradWC = L_i grad_i W (CspmCorrection
-// below), which the pressure term (CspmPressure in symmetric_pressure.hpp) uses; the continuity
+// the pair loop hands each fluid pair gradWC = L_i grad_i W (GradientCorrection
+// in pair_loop.hpp), which the pressure term (symmetric_pressure.hpp) uses; the continuity
 // term, viscosity and density diffusion keep grad W. (The continuity term
 // used L_i grad W until 2026-12: the density then stopped following the
 // particles' packing and the dam break's surge tongue crowded until a
@@ -111,13 +111,5 @@ unsigned CspmCorrectionPass<D>::run(Particles<D>& P, const NeighbourList<D>& nei
 
 extern template struct CspmCorrectionPass<2>;
 extern template struct CspmCorrectionPass<3>;
-
-// The pair loop's gradient correction: gradWC = L_i grad_i W_ij.
-template <int D>
-struct CspmCorrection {
-  static constexpr bool kCorrects = true;
-  const Mat<D>* L;
-  Vec<D> operator()(std::uint32_t i, const Vec<D>& gradW) const { return L[i] * gradW; }
-};
 
 }  // namespace sph

@@ -16,11 +16,10 @@
 // viscosities times (x 2 separations: free space or the minimum image of
 // periodic axes), not 2^3 times more. With the CSPM gradient correction
 // (cspm_correction.hpp; its L_i computed by the pass before this one) the
-// pressure term is CspmPressure and the pair loop corrects the gradient of
-// the pressure term (the continuity term keeps grad W, so that the density
-// follows the particles' packing: continuity_density.hpp): a second
-// instantiation, chosen once
-// per evaluation; off, the loop is the one it was.
+// pair loop hands the pressure term L_i grad W instead of grad W (the
+// continuity term keeps grad W, so that the density follows the particles'
+// packing: continuity_density.hpp); that choice too is a branch per pair,
+// the same for every pair, not a second instantiation.
 #pragma once
 
 #include "sph/kernels/kernels.hpp"
@@ -110,24 +109,22 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   const unsigned bits = std::visit(
       [&](const auto& k, const auto& visc) {
         using K = std::decay_t<decltype(k)>;
-        auto loop = [&](const auto& pressure, const auto& correct) {
-          const ContinuityDensity rate{rateHere};
-          const MonaghanArtificialPressure<K> tension{k, artificialPressure, artificialPressureN,
-                                                      artificialPressure > 0 ? 1 / k.W(spacing) : 0};
-          const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusionHere, pressure, tension),
-                                                 viscosityPack<K, false>(k, visc),
-                                                 std::make_tuple(Xsph<K>{k, xsphEpsilon}));
-          const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, pressure),
-                                                         viscosityPack<K, true>(k, visc, wallViscosity));
-          constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
-          return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
-                             std::make_tuple(ContinuityDensity{wallRatesHere}),
-                             ForceEpilogue<D, writes>{bodies, xsphEpsilon, rateHere,
-                                                      surfaceTension ? &*surfaceTension : nullptr},
-                             DensityRateEpilogue<D>{}, PairLoopParts{wallPairs, wallRatesHere}, correct);
-        };
-        if (cspm) return loop(CspmPressure{}, CspmCorrection<D>{P.cspmL.data()});
-        return loop(SymmetricPressure{}, NoGradientCorrection{});
+        const SymmetricPressure pressure{cspm};
+        const GradientCorrection<D> correct{cspm ? P.cspmL.data() : nullptr};
+        const ContinuityDensity rate{rateHere};
+        const MonaghanArtificialPressure<K> tension{k, artificialPressure, artificialPressureN,
+                                                    artificialPressure > 0 ? 1 / k.W(spacing) : 0};
+        const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusionHere, pressure, tension),
+                                               viscosityPack<K, false>(k, visc),
+                                               std::make_tuple(Xsph<K>{k, xsphEpsilon}));
+        const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, pressure),
+                                                       viscosityPack<K, true>(k, visc, wallViscosity));
+        constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
+        return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
+                           std::make_tuple(ContinuityDensity{wallRatesHere}),
+                           ForceEpilogue<D, writes>{bodies, xsphEpsilon, rateHere,
+                                                    surfaceTension ? &*surfaceTension : nullptr},
+                           DensityRateEpilogue<D>{}, PairLoopParts{wallPairs, wallRatesHere}, correct);
       },
       kernel, viscosity);
   const unsigned walls = wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;

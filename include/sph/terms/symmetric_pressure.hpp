@@ -5,7 +5,7 @@
 //
 // Antisymmetric in i, j, so total momentum is conserved exactly.
 //
-// CspmPressure is the same sum with the CSPM-corrected gradient L_i grad_i W_ij
+// With CSPM (corrected = true) it is the same sum with the corrected gradient L_i grad_i W_ij
 // (cspm_correction.hpp). Renormalised gradients kept in a form with p_i + p_j
 // for stability, as Oger et al. 2007 (J. Comput. Phys. 225, 1472) do; here
 // with Monaghan's p/rho^2 weights. For a uniform density it is
@@ -27,24 +27,21 @@
 
 namespace sph {
 
-template <bool Corrected>
-struct SymmetricPressureWith {
-  static constexpr unsigned bit = Corrected ? term_bits::kCspmPressure : term_bits::kSymmetricPressure;
+// The pair loop hands the pressure term c.gradWC: grad W itself, or L_i
+// grad W when the case corrects gradients (a uniform branch in the loop,
+// pair_loop.hpp), so one instantiation serves both; `corrected` only names
+// which of the two ran (its term bit).
+struct SymmetricPressure {
+  bool corrected = false;
   static constexpr unsigned writes = rates::kAcceleration;
+  unsigned bits() const { return corrected ? term_bits::kCspmPressure : term_bits::kSymmetricPressure; }
 
   template <int D>
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
     const Real pi = P.p[c.i] / (P.rho[c.i] * P.rho[c.i]);
     const Real pj = P.p[c.j] / (P.rho[c.j] * P.rho[c.j]);
-    if constexpr (Corrected) {
-      r.a += (-P.m[c.j] * (pi + pj)) * c.gradWC;
-    } else {
-      r.a += (-P.m[c.j] * (pi + pj)) * c.gradW;
-    }
+    r.a += (-P.m[c.j] * (pi + pj)) * c.gradWC;
   }
 };
-
-using SymmetricPressure = SymmetricPressureWith<false>;
-using CspmPressure = SymmetricPressureWith<true>;
 
 }  // namespace sph
