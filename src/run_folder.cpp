@@ -1,8 +1,9 @@
 // run.json with nlohmann::json (Debian's nlohmann-json3-dev), and the rules
-// for output folders. The only translation unit that includes the JSON
-// library.
+// for output folders, checked and then made. The only translation unit that
+// includes the JSON library.
 #include "sph/io/run_folder.hpp"
 
+#include "sph/case_file.hpp"
 #include "sph/io/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <ostream>
 #include <vector>
 
 namespace sph {
@@ -203,6 +205,33 @@ std::size_t removeRunFiles(const std::filesystem::path& dir) {
   for (const char* f : {kCaseFile, kRecordFile})
     if (std::filesystem::is_regular_file(dir / f, ec)) removed += std::filesystem::remove(dir / f, ec);
   return removed + removeStaleTemporaries(dir);
+}
+
+bool makeRunFolder(const std::string& output, bool overwrite, std::ostream& err) {
+  const std::filesystem::path dir(output);
+  std::error_code ec;
+  // The first folder on the path that does not exist yet: removed again if
+  // the rest of the path cannot be created, so a failure writes nothing.
+  std::filesystem::path firstNew;
+  for (std::filesystem::path p = std::filesystem::absolute(dir, ec); !p.empty() && !std::filesystem::exists(p, ec);
+       p = p.parent_path()) {
+    firstNew = p;
+    if (p == p.parent_path()) break;
+  }
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    err << "sph: error: output folder " << escapeControl(output) << " cannot be created"
+        << (ec ? ": " + ec.message() : std::string()) << "\n";
+    std::error_code ignored;
+    if (!firstNew.empty()) std::filesystem::remove_all(firstNew, ignored);
+    return false;
+  }
+  if (overwrite && inspectFolder(dir) == FolderContents::kRun) {
+    const std::size_t removed = removeRunFiles(dir);
+    err << "sph: note: --overwrite removed " << removed << " file(s) of the earlier run in " << output << "\n";
+  }
+  removeStaleTemporaries(dir);
+  return true;
 }
 
 std::string isoNow() {

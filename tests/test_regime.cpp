@@ -1,5 +1,6 @@
-// The regime check (sph/regime_check.hpp): its measures on a lattice (no
-// particle alone, the neighbour count, a pair brought together is seen),
+// The regime check (sph/regime_check.hpp): its references from the model's
+// EOS, its measures on a lattice (no particle alone, the neighbour count, a
+// pair brought together is seen),
 // and runs that leave the regime without a NaN, each stopped with its cause
 // named, exit 3, the cause in run.json and the snapshots before it intact:
 // explicit Euler past its acoustic limit (Mach), a column whose sound speed
@@ -8,6 +9,7 @@
 // warn` lets the same run finish with a warning.
 #include "test_support.hpp"
 
+#include "sph/model_registry.hpp"
 #include "sph/regime_check.hpp"
 
 #include <nlohmann/json.hpp>
@@ -27,6 +29,33 @@ nlohmann::json runJson(const std::filesystem::path& dir) {
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(regime)
+
+// The references the regime check judges against come from the model's EOS:
+// the sound speed at rho0 (Tait: c0, by its definition c = c0 (rho/rho0)^((gamma-1)/2);
+// linear p = k (rho - rho0), the seed's too: sqrt(k)), none for the polytropic
+// toy star; the density window's rho0 for Tait only. Exact up to one rounding.
+BOOST_AUTO_TEST_CASE(the_references_come_from_the_model) {
+  CaseConfig c;
+  c.k = 16;
+  c.rho0 = 1000;
+  c.c0 = 30;
+  c.gamma = 7;
+  c.model = "seed_wcsph";
+  const Model<2> seed = makeModel<2>(withDefaults(c));
+  BOOST_TEST(seed.regimeSoundSpeed() == 4.0, tt::tolerance(1e-15));
+  BOOST_TEST(seed.regimeDensity() == 0.0);
+  c.model = "wcsph";
+  const std::pair<const char*, std::pair<double, double>> expected[] = {
+      {"tait", {30.0, 1000.0}}, {"linear", {4.0, 0.0}}, {"linear_clamped", {4.0, 0.0}}, {"polytropic", {0.0, 0.0}}};
+  for (const auto& [eos, reference] : expected) {
+    c.eos = eos;
+    const Model<2> m = makeModel<2>(withDefaults(c));
+    BOOST_TEST_CONTEXT("eos " << eos) {
+      BOOST_TEST(m.regimeSoundSpeed() == reference.first, tt::tolerance(1e-15));
+      BOOST_TEST(m.regimeDensity() == reference.second);
+    }
+  }
+}
 
 BOOST_AUTO_TEST_CASE(measures_on_a_lattice) {
   CaseConfig c = test::bareWcsph(2);

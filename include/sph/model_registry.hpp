@@ -30,6 +30,15 @@ Kernel<D> makeKernel(const CaseConfig& c) {
   return methodRow(kernelMethods<D>(), "kernel", c.kernel).make(c);
 }
 
+// The kernel probes interpolate with: the case's; the seed model's kernels
+// are its own, so there a Wendland C2 with the seed's support h stands in.
+template <int D>
+Kernel<D> makeProbeKernel(const CaseConfig& c) {
+  CaseConfig probe = c;
+  if (probe.kernel.empty()) probe.kernel = "wendland_c2", probe.h = c.h / 2;
+  return makeKernel<D>(probe);
+}
+
 inline EquationOfState makeEos(const CaseConfig& c) { return methodRow(eosMethods(), "eos", c.eos).make(c); }
 
 inline ViscosityChoice makeViscosity(const CaseConfig& c) {
@@ -111,6 +120,23 @@ WallGuard<D> makeWallGuard(const CaseConfig& c) {
   return guard;
 }
 
+// Damped reflecting walls (the reflecting boundary), none for other
+// boundaries or without walls. They act on the faces of the domain box:
+// along a periodic axis their faces are at infinity.
+template <int D>
+std::optional<DampedReflectingWalls<D>> makeReflectingWalls(const CaseConfig& c) {
+  if (!c.walls || c.boundary != "reflecting") return std::nullopt;
+  Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
+  const unsigned periodic = periodicAxes(c);
+  for (int d = 0; d < D; ++d)
+    if ((periodic >> d) & 1u) lo[d] = -std::numeric_limits<Real>::infinity(), hi[d] = std::numeric_limits<Real>::infinity();
+  return DampedReflectingWalls<D>{lo, hi, c.h, c.restitution,
+                                  c.model == "seed_wcsph" ? ReflectionRule::kSeed : ReflectionRule::kApproaching};
+}
+
+// The wall guard (wall_guard key) acts at wall-particle boundaries only.
+inline bool wallGuardOn(const CaseConfig& c) { return c.walls && c.boundary != "reflecting" && c.wallGuard; }
+
 template <int D>
 Integrator<D> makeIntegrator(const std::string& name) {
   return methodRow(integratorMethods<D>(), "integrator", name).make(CaseConfig{});
@@ -124,15 +150,7 @@ Scene<D> makeScene(const CaseConfig& c, InitialState<D> init,
                    Real startTime = std::numeric_limits<Real>::quiet_NaN()) {
   const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
   const PeriodicBox<D> periodic{lo, hi - lo, periodicAxes(c)};
-  std::optional<DampedReflectingWalls<D>> walls;
-  // Reflecting walls act on the other faces: along a periodic axis their
-  // faces are at infinity.
-  Vec<D> wallLo = lo, wallHi = hi;
-  for (int d = 0; d < D; ++d)
-    if (periodic.periodic(d)) wallLo[d] = -std::numeric_limits<Real>::infinity(), wallHi[d] = std::numeric_limits<Real>::infinity();
-  if (c.walls && c.boundary == "reflecting")
-    walls = DampedReflectingWalls<D>{wallLo, wallHi, c.h, c.restitution,
-                                     c.model == "seed_wcsph" ? ReflectionRule::kSeed : ReflectionRule::kApproaching};
+  const std::optional<DampedReflectingWalls<D>> walls = makeReflectingWalls<D>(c);
   if (std::isnan(startTime)) startTime = init.startTime;
   StateCheck<D> check(lo, hi);
   check.wallParticles = c.walls && c.boundary != "reflecting";
@@ -152,7 +170,7 @@ Scene<D> makeScene(const CaseConfig& c, InitialState<D> init,
                  startTime, makeIntegrator<D>(c.integrator));
   if (periodic.any()) scene.setPeriodic(periodic);
   if (motion) scene.setWallMotion(*motion);
-  if (c.walls && c.boundary != "reflecting" && c.wallGuard) scene.setWallGuard(makeWallGuard<D>(c));
+  if (wallGuardOn(c)) scene.setWallGuard(makeWallGuard<D>(c));
   if (c.shifting == "fickian")
     scene.setShifting(ParticleShifting<D>(makeKernel<D>(c), c.shiftingCoefficient, c.spacing, c.rho0));
   return scene;

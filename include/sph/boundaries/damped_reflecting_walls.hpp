@@ -39,6 +39,11 @@ struct DampedReflectingWalls {
     }
   }
 
+  // Would the walls move a particle at x (closer than `distance` to one)?
+  bool clamps(const Vec<D>& x) const {
+    return (x.array() - lo.array()).minCoeff() < distance || (hi.array() - x.array()).minCoeff() < distance;
+  }
+
  private:
   // outward: -1 for a lower wall, +1 for an upper wall.
   void reflect(Particles<D>& P, std::size_t i, int d, int outward) const {

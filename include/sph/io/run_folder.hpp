@@ -20,6 +20,7 @@
 #include "sph/case_config.hpp"
 
 #include <filesystem>
+#include <iosfwd>
 #include <map>
 #include <optional>
 #include <string>
@@ -83,6 +84,13 @@ void checkOutputFolder(const std::filesystem::path& dir, bool overwrite, bool re
 // snapshots named like its own (<name>_NNNNN.vtp: one written just before
 // it was killed), run.json, run.case and stale temporaries. Returns how many.
 std::size_t removeRunFiles(const std::filesystem::path& dir);
+
+// Once everything that can be checked has been: creates the output folder
+// `output` (removing again the folders it made if the rest of the path cannot
+// be created, so a failure writes nothing), removes an earlier run's files
+// for --overwrite (one note to err) and stale temporaries. False after one
+// "sph: error:" line to err.
+bool makeRunFolder(const std::string& output, bool overwrite, std::ostream& err);
 
 // Now as ISO 8601 UTC ("2026-12-01T16:38:00Z").
 std::string isoNow();

@@ -109,6 +109,18 @@ class Model {
 
   Real potentialEnergy(const Particles<D>& P) const { return info_.bodies.potential(P); }
 
+  // The regime check's references (regime_check.hpp): the EOS's sound speed
+  // at rest density (the seed's p = k (rho - rho0): sqrt(k)), none for the
+  // polytropic EOS of the toy stars; and the rest density of the density
+  // window, for the Tait EOS of the water cases only (a linear EOS and the
+  // seed's set a stiffness k and are compressible by design: the seed dam
+  // break reaches 1.2 rho0).
+  Real regimeSoundSpeed() const {
+    if (std::holds_alternative<PolytropicEos>(info_.eos)) return 0;
+    return std::visit([&](const auto& eos) { return eos.soundSpeed(info_.restDensity); }, info_.eos);
+  }
+  Real regimeDensity() const { return std::holds_alternative<TaitEos>(info_.eos) ? info_.restDensity : 0; }
+
   // Largest sound speed over the particles (for the CFL time step). Every
   // EOS here has c monotonic in rho, so it is c at the lowest or the highest
   // density.

@@ -1,0 +1,170 @@
+// The files a run writes as it goes: snapshots, the .pvd series, energy.csv,
+// timestep.csv, the probe files and the toy star's profile (run_output.hpp).
+#include "sph/io/run_output.hpp"
+
+#include "sph/io/atomic_file.hpp"
+#include "sph/io/number_format.hpp"
+#include "sph/model_registry.hpp"
+#include "sph/scene.hpp"
+#include "sph/toy_star.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+
+namespace sph {
+namespace {
+
+// Lines of a CSV file whose first column (a number) passes keep(), header
+// kept; "" if the file cannot be read.
+template <class Keep>
+std::string csvLinesWhere(const std::filesystem::path& path, Keep keep) {
+  std::ifstream in(path);
+  std::string out, line;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (header) {
+      out += line + "\n";
+      header = false;
+      continue;
+    }
+    try {
+      if (keep(std::stod(line.substr(0, line.find(','))))) out += line + "\n";
+    } catch (const std::exception&) {
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+template <int D>
+SnapshotInfo snapshotInfo(const CaseConfig& c, std::size_t n) {
+  SnapshotInfo info{0, 0, c.h, c.spacing, {}, {}};
+  if (c.starMass > 0) {
+    const Real ball = D == 2 ? M_PI * c.starRadius * c.starRadius : 4 * M_PI / 3 * std::pow(c.starRadius, 3);
+    info.particleSpacing =
+        std::pow(ball * static_cast<Real>(c.starParticles.size()) / static_cast<Real>(n), 1.0 / D);
+  }
+  if (c.walls) info.domainMin = c.domainMin, info.domainMax = c.domainMax;
+  return info;
+}
+
+template <int D>
+RunOutput<D>::RunOutput(const std::filesystem::path& dir, const std::string& name, SnapshotInfo info,
+                        RunRecord& record, bool adaptive, ProbeFiles<D> probes)
+    : dir_(dir), name_(name), info_(info), series_((dir / (name + ".pvd")).string()), record_(record),
+      adaptive_(adaptive), probes_(std::move(probes)) {
+  energy_ = "time,kinetic,potential,total\n";
+  if (adaptive_) dtLog_ = "step,time,dt,criterion\n";
+}
+
+template <int D>
+void RunOutput<D>::resumeAfter(long step, Real time) {
+  series_ = PvdSeries::load(series_.path());
+  count_ = static_cast<long>(series_.entries().size());
+  lastStep_ = step;
+  lastTime_ = time;
+  energy_ = csvLinesWhere(dir_ / "energy.csv", [&](double t) { return t <= time; });
+  if (energy_.empty()) energy_ = "time,kinetic,potential,total\n";
+  if (adaptive_) {
+    dtLog_ = csvLinesWhere(dir_ / "timestep.csv", [&](double s) { return s <= static_cast<double>(step); });
+    if (dtLog_.empty()) dtLog_ = "step,time,dt,criterion\n";
+  }
+  probes_.resume(time, [&](const char* file) {
+    return csvLinesWhere(dir_ / file, [&](double t) { return t <= time * (1 + 1e-12); });
+  });
+}
+
+template <int D>
+void RunOutput<D>::write(const Scene<D>& scene) {
+  char file[64];
+  std::snprintf(file, sizeof file, "_%05ld.vtp", count_);
+  const std::string vtp = name_ + file;
+  info_.time = scene.time();
+  info_.step = scene.stepIndex();
+  writeVtp<D>((dir_ / vtp).string(), scene.particles(), info_);
+  record_.addFile(vtp);
+  series_.add(scene.time(), scene.stepIndex(), vtp);
+  record_.addFile(name_ + ".pvd");
+  const Energy e = scene.energy();
+  char line[160];
+  std::snprintf(line, sizeof line, "%s,%.10g,%.10g,%.10g\n", shortestDecimal(scene.time()).c_str(), e.kinetic,
+                e.potential, e.total());
+  energy_ += line;
+  writeFileAtomically((dir_ / "energy.csv").string(), energy_);
+  record_.addFile("energy.csv");
+  if (count_ == 0 && lastStep_ < 0) sampleProbes(scene);
+  for (const auto& f : probes_.files()) {
+    writeFileAtomically((dir_ / f.name).string(), *f.text);
+    record_.addFile(f.name);
+  }
+  flushTimeSteps();
+  ++count_;
+  lastStep_ = scene.stepIndex();
+  lastTime_ = scene.time();
+  record_.snapshots = count_;
+  record_.lastSnapshot = vtp;
+}
+
+template <int D>
+void RunOutput<D>::sampleProbes(const Scene<D>& scene) {
+  if (probes_.any()) probes_.sample(scene.particles(), scene.time(), shortestDecimal(scene.time()));
+}
+
+template <int D>
+void RunOutput<D>::addTimeStep(const Scene<D>& scene) {
+  if (!adaptive_) return;
+  char line[128];
+  std::snprintf(line, sizeof line, "%ld,%s,%.6g,%s\n", scene.stepIndex(), shortestDecimal(scene.time()).c_str(),
+                scene.lastTimeStep().dt, scene.lastTimeStep().criterion);
+  dtLog_ += line;
+}
+
+template <int D>
+void RunOutput<D>::flushTimeSteps() {
+  if (!adaptive_) return;
+  writeFileAtomically((dir_ / "timestep.csv").string(), dtLog_);
+  record_.addFile("timestep.csv");
+}
+
+template <int D>
+void writeStarProfiles(const Scene<D>& scene, const CaseConfig& c, const std::filesystem::path& dir,
+                       std::ostream& out, RunRecord& record) {
+  const Real lambda = starLambda(c);
+  const auto& P = scene.particles();
+  Vec<D> centre = Vec<D>::Zero();
+  Real mass = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    centre += P.m[i] * P.x[i];
+    mass += P.m[i];
+  }
+  centre /= mass;
+  const StarProfile prof = toyStarProfile(P, centre, lambda, c.starRadius, c.k, c.polytropicIndex);
+  std::string csv = "r,rho_sph,rho_analytic,particles\n";
+  char line[160];
+  for (std::size_t b = 0; b < prof.r.size(); ++b) {
+    std::snprintf(line, sizeof line, "%.6g,%.8g,%.8g,%zu\n", prof.r[b], prof.rhoSph[b], prof.rhoExact[b],
+                  prof.count[b]);
+    csv += line;
+  }
+  writeFileAtomically((dir / "star_profile.csv").string(), csv);
+  record.addFile("star_profile.csv");
+  std::snprintf(line, sizeof line,
+                "  toy star         relative L2 density error inside 0.9 R: %.4f (%zu particles "
+                "inside; lambda = %.6g)\n",
+                prof.l2Error, prof.inside, lambda);
+  out << line;
+}
+
+template SnapshotInfo snapshotInfo<2>(const CaseConfig&, std::size_t);
+template SnapshotInfo snapshotInfo<3>(const CaseConfig&, std::size_t);
+template class RunOutput<2>;
+template class RunOutput<3>;
+template void writeStarProfiles<2>(const Scene<2>&, const CaseConfig&, const std::filesystem::path&, std::ostream&,
+                                   RunRecord&);
+template void writeStarProfiles<3>(const Scene<3>&, const CaseConfig&, const std::filesystem::path&, std::ostream&,
+                                   RunRecord&);
+
+}  // namespace sph
