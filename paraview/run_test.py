@@ -431,6 +431,10 @@ def xvfb_sph(e, args, env=None, timeout=300):
                 "bad X server connection" in out) and attempt == 1:
             log("note: the X server failed; retrying once")
             time.sleep(1)
+            # The aborted run left its output folder behind (marked as
+            # running): the retry replaces it.
+            if "--output" in args and "--overwrite" not in args:
+                args = args + ["--overwrite"]
             continue
         break
     return code, out
