@@ -120,7 +120,9 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     // Ma <= 0.1 needs c >= 10 v: c0 itself with eos tait; k = c^2 with the
     // linear EOS and the seed's p = k (rho - rho0).
     const Real cNeeded = 10 * vExpected;
-    const bool seed = c.model == "seed_wcsph", tait = !seed && c.eos == "tait", linear = seed || c.eos == "linear";
+    const auto& eos = model.eos();
+    const bool tait = std::holds_alternative<TaitEos>(eos),
+               linear = std::holds_alternative<LinearEos>(eos) || std::holds_alternative<ClampedLinearEos>(eos);
     std::string how;
     if (tait) how = ": c0 >= " + fmt(cNeeded) + " m/s";
     else if (linear) how = ": k >= " + fmt(cNeeded * cNeeded) + " m^2/s^2 (c = sqrt(k))";

@@ -81,12 +81,13 @@ class RegimeWatch {
       if (showLiveLine) err << "\n";
       err << "sph: warning: at step " << scene.stepIndex() << ", t = " << shortestDecimal(scene.time()) << " s: " << verdict.warning << "\n";
     }
-    if (verdict.stop.empty()) return "";
+    // With warn, a run that left its regime says so once, not at every check.
+    if (verdict.stop.empty() || (warned_ && c.regimeCheck != "stop")) return "";
     if (showLiveLine) err << "\n";
     const std::string message = "the run left its regime at step " + std::to_string(scene.stepIndex()) +
                                 ", t = " + shortestDecimal(scene.time()) + " s: " + verdict.stop;
     if (c.regimeCheck == "stop") return message;
-    if (!warned_) err << "sph: warning: " << message << "\n";
+    err << "sph: warning: " << message << "\n";
     warned_ = true;
     return "";
   }
@@ -171,8 +172,10 @@ RunTotals driveRun(const CaseConfig& c, Scene<D>& scene, RunOutput<D>& output, R
     if (!resuming) output.write(scene);
     saveRecord();
     offerToCatalyst(catalyst, scene, info, finished(), err);
-    while (!finished()) {
-      if (stopSignal() != 0) break;
+    // A stop signal ends the run after the step it arrived in, with that
+    // step's check and snapshot (`last` below), never between them.
+    bool lastDone = false;
+    while (!finished() && !lastDone) {
       const auto t0 = Clock::now();
       const auto failure = scene.step(nextOutput);
       const double dtWall = secondsSince(t0);
@@ -191,15 +194,22 @@ RunTotals driveRun(const CaseConfig& c, Scene<D>& scene, RunOutput<D>& output, R
         break;
       }
       // An adaptive dt that no longer lets the run end stops it (below).
+      // The last step of the run: the end reached or a stop asked for, read
+      // once, so the snapshot, the check and Catalyst agree on it.
+      const bool last = finished() || stopSignal() != 0;
+      lastDone = last;
       const bool collapsed =
           adaptive && !finished() && (c.endTime - scene.time()) / scene.lastTimeStep().dt > kMaxSteps;
       const bool outputDue = (byInterval ? scene.time() >= nextOutput * (1 - 1e-12) - 1e-12 * c.outputInterval
                                          : scene.stepIndex() % c.outputEvery == 0) ||
-                             finished() || stopSignal() != 0;
-      // Still physics? Every 10 steps, and before anything is written: a
-      // snapshot, the last step, a stop signal, a collapsed dt (regime_check.hpp).
-      // So however few its steps, no run writes a snapshot of nonsense.
-      if (scene.stepIndex() % 10 == 0 || outputDue || collapsed) {
+                             last;
+      const bool catalystDue =
+          catalyst && (scene.stepIndex() % c.catalystEvery == 0 || last);
+      // Still physics? Every 10 steps, and before anything is written or
+      // shown: a snapshot, a Catalyst hand-over, the last step, a stop
+      // signal, a collapsed dt (regime_check.hpp). So however few its steps,
+      // no run writes or shows a snapshot of nonsense.
+      if (scene.stepIndex() % 10 == 0 || outputDue || catalystDue || collapsed) {
         const std::string message = regime.judge(scene, c, showLiveLine, err);
         if (!message.empty()) {
           err << "sph: error: " << message << "\nsph: the outputs up to step " << output.lastStep()
@@ -228,8 +238,8 @@ RunTotals driveRun(const CaseConfig& c, Scene<D>& scene, RunOutput<D>& output, R
         saveRecord();
         if (byInterval) nextOutput = outputTime(outputIndex(scene.time()) + 1);
       }
-      if (catalyst && (scene.stepIndex() % c.catalystEvery == 0 || finished() || stopSignal() != 0))
-        offerToCatalyst(catalyst, scene, info, finished() || stopSignal() != 0, err);
+      if (catalystDue)
+        offerToCatalyst(catalyst, scene, info, last, err);
       if (c.progress && secondsSince(lastProgress) > progressEvery) {
         lastProgress = Clock::now();
         printProgress(scene, c.endTime, n, totals, resumeTime, showLiveLine, err);

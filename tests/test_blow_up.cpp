@@ -5,7 +5,8 @@
 #include "pvd_reader.hpp"
 #include "test_support.hpp"
 
-#include <vtkDataArray.h>
+#include <nlohmann/json.hpp>
+
 #include <vtkPointData.h>
 
 #include <algorithm>
@@ -51,8 +52,8 @@ BOOST_AUTO_TEST_CASE(state_check_names_particle_and_quantity) {
 // wrote snapshots at 1e14 m/s. Now the check runs before each snapshot
 // (output_interval 0.01 s: one is due at step 1) and at the end (an
 // output_interval longer than the run: only the end), so the run stops
-// with exit 3 naming the Mach number, and the series holds only the start:
-// every speed in it below c0 = 44 m/s.
+// with exit 3 naming the Mach number in its message and run.json, and the
+// series holds only the start.
 BOOST_AUTO_TEST_CASE(a_two_step_run_is_checked_before_its_snapshots) {
   for (const char* interval : {"0.01", "5"}) {
     const auto dir = test::scratchDir(std::string("two_steps_") + interval);
@@ -65,14 +66,11 @@ BOOST_AUTO_TEST_CASE(a_two_step_run_is_checked_before_its_snapshots) {
     const auto series = test::readPvd(dir / "dam_break.pvd");
     BOOST_TEST_REQUIRE(series.size() == 1u, "interval " << interval);
     BOOST_TEST(series[0].time == 0.0);
-    vtkDataArray* v = series[0].data->GetPointData()->GetArray("velocity");
-    BOOST_TEST_REQUIRE(v != nullptr);
-    double fastest = 0;
-    for (vtkIdType i = 0; i < v->GetNumberOfTuples(); ++i) {
-      const double* c = v->GetTuple3(i);
-      fastest = std::max(fastest, std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]));
-    }
-    BOOST_TEST(fastest < 44.0);
+    // run.json names the stop and its cause.
+    std::ifstream in(dir / "run.json");
+    const auto record = nlohmann::json::parse(in);
+    BOOST_TEST(record.at("status").get<std::string>() == "blew_up");
+    BOOST_TEST(record.at("message").get<std::string>().find(": Mach ") != std::string::npos);
     BOOST_TEST(!std::filesystem::exists(dir / "dam_break_00001.vtp"));
   }
 }

@@ -68,7 +68,7 @@ struct LeapFrog {
         P.rho[i] += dt * P.drho[i];
         if (i >= nFluid) continue;
         P.x[i] += (dt / 2) * P.driftVelocity(i, P.vHalf[i]);
-        P.v[i] = P.vHalf[i] + (dt / 2) * P.a[i];
+        P.v[i] = forcesSeeHalfStepVelocity ? P.vHalf[i] : P.vHalf[i] + (dt / 2) * P.a[i];
         constrain(P, i);
       }
     }
