@@ -329,9 +329,9 @@ struct Particles : FieldArrays<D> {
   // more (not the vector's doubling: the ghosts are a fraction of the
   // particles, and their number changes a little at every sort).
   template <class V>
-  void growTo(V& v, std::size_t n) {
-    if (n > v.capacity()) v.reserve(n + ghostSource_.size() / 4 + 16);
-    v.resize(n);
+  void growTo(V& array, std::size_t n) {
+    if (n > array.capacity()) array.reserve(n + ghostSource_.size() / 4 + 16);
+    array.resize(n);
   }
 
   void dropGhostRecords() {
