@@ -26,13 +26,15 @@
 namespace sph {
 namespace {
 
+// The first n entries of a field (the owned particles: ghosts are never
+// written).
 template <int D>
-vtkSmartPointer<vtkDoubleArray> vectorArray(const char* name, const std::vector<Vec<D>>& v) {
+vtkSmartPointer<vtkDoubleArray> vectorArray(const char* name, const std::vector<Vec<D>>& v, std::size_t n) {
   auto arr = vtkSmartPointer<vtkDoubleArray>::New();
   arr->SetName(name);
   arr->SetNumberOfComponents(3);
-  arr->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) {
+  arr->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i) {
     double t[3] = {0, 0, 0};
     for (int d = 0; d < D; ++d) t[d] = v[i][d];
     arr->SetTypedTuple(static_cast<vtkIdType>(i), t);
@@ -40,22 +42,22 @@ vtkSmartPointer<vtkDoubleArray> vectorArray(const char* name, const std::vector<
   return arr;
 }
 
-vtkSmartPointer<vtkDoubleArray> scalarArray(const char* name, const std::vector<Real>& s) {
+vtkSmartPointer<vtkDoubleArray> scalarArray(const char* name, const std::vector<Real>& s, std::size_t n) {
   auto arr = vtkSmartPointer<vtkDoubleArray>::New();
   arr->SetName(name);
-  arr->SetNumberOfValues(static_cast<vtkIdType>(s.size()));
-  for (std::size_t i = 0; i < s.size(); ++i) arr->SetValue(static_cast<vtkIdType>(i), s[i]);
+  arr->SetNumberOfValues(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i) arr->SetValue(static_cast<vtkIdType>(i), s[i]);
   return arr;
 }
 
 // Integer fields: id as Int64, kind as UInt8.
 template <class T>
-vtkSmartPointer<vtkDataArray> integerArray(const char* name, const std::vector<T>& s) {
+vtkSmartPointer<vtkDataArray> integerArray(const char* name, const std::vector<T>& s, std::size_t n) {
   using Array = std::conditional_t<std::is_same_v<T, std::uint8_t>, vtkUnsignedCharArray, vtkTypeInt64Array>;
   auto arr = vtkSmartPointer<Array>::New();
   arr->SetName(name);
-  arr->SetNumberOfValues(static_cast<vtkIdType>(s.size()));
-  for (std::size_t i = 0; i < s.size(); ++i) arr->SetValue(static_cast<vtkIdType>(i), s[i]);
+  arr->SetNumberOfValues(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i) arr->SetValue(static_cast<vtkIdType>(i), s[i]);
   return arr;
 }
 
@@ -121,9 +123,10 @@ vtkSmartPointer<vtkPolyData> snapshotPolyData(const Particles<D>& P, const Snaps
     if (f.vtkName == nullptr || field.empty()) return;
     using T = typename std::decay_t<decltype(field)>::value_type;
     vtkSmartPointer<vtkDataArray> arr;
-    if constexpr (std::is_same_v<T, Vec<D>>) arr = vectorArray<D>(f.vtkName, field);
-    else if constexpr (std::is_same_v<T, Real>) arr = scalarArray(f.vtkName, field);
-    else if constexpr (std::is_integral_v<T>) arr = integerArray(f.vtkName, field);
+    const std::size_t owned = P.size();
+    if constexpr (std::is_same_v<T, Vec<D>>) arr = vectorArray<D>(f.vtkName, field, owned);
+    else if constexpr (std::is_same_v<T, Real>) arr = scalarArray(f.vtkName, field, owned);
+    else if constexpr (std::is_integral_v<T>) arr = integerArray(f.vtkName, field, owned);
     if (!arr) return;
     arr->GetInformation()->Set(vtkDataArray::UNITS_LABEL(), f.unit(D));
     pd->AddArray(arr);
@@ -139,7 +142,7 @@ vtkSmartPointer<vtkPolyData> snapshotPolyData(const Particles<D>& P, const Snaps
   for (const auto& [name, values] : {std::pair<const char*, const std::vector<Real>&>{"domain_min", info.domainMin},
                                      {"domain_max", info.domainMax}}) {
     if (values.empty()) continue;
-    fd->AddArray(scalarArray(name, values));
+    fd->AddArray(scalarArray(name, values, values.size()));
   }
   return poly;
 }

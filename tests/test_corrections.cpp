@@ -14,6 +14,7 @@
 
 #include "sph/hash_grid.hpp"
 #include "sph/models/passes.hpp"
+#include "sph/periodic_ghosts.hpp"
 
 #include <random>
 
@@ -371,11 +372,9 @@ BOOST_AUTO_TEST_CASE(periodic_faces_see_their_images) {
              fieldBit(kFieldCurvature));
   std::fill(P.colour.begin(), P.colour.end(), 1.0);
   HashGrid<2> grid{2 * kH};
-  grid.setPeriodic(PeriodicBox<2>{Vec<2>::Zero(), Vec<2>::Constant(n * kDx), 3u});
-  grid.build(P.x);
-  P.permute(grid.order());
   NeighbourList<2> neighbours;
-  neighbours.build(grid, P.x, 2 * kH);
+  PeriodicGhosts<2> ghosts(PeriodicBox<2>{Vec<2>::Zero(), Vec<2>::Constant(n * kDx), 3u}, 2 * kH);
+  sortByCell(P, grid, neighbours, 2 * kH, &ghosts);
   const WendlandC2<2> kernel{kH};
 
   CorrectionCounts counts;

@@ -1,5 +1,5 @@
-// Periodic boundaries (periodic_box.hpp, hash_grid.hpp, neighbour_list.hpp,
-// pair_loop.hpp): the neighbour search against an O(N^2) brute force with
+// Periodic boundaries (periodic_box.hpp, periodic_ghosts.hpp, hash_grid.hpp,
+// neighbour_list.hpp, pair_loop.hpp): the neighbour search with ghosts against an O(N^2) brute force with
 // the minimum image, on random points, points on the faces and in boxes only
 // two to four supports wide, along every subset of the axes in 2D and 3D;
 // r_ij of the pair loop against the brute-force nearest image; wrapping;
@@ -12,6 +12,10 @@
 #include "sph/pair_loop.hpp"
 #include "sph/particles.hpp"
 #include "sph/periodic_box.hpp"
+#include "sph/periodic_ghosts.hpp"
+#include "sph/terms/equation_of_state.hpp"
+#include "sph/terms/summation_density.hpp"
+#include "sph/kernels/seed_kernels.hpp"
 #include "sph/wall_particles.hpp"
 #include "test_support.hpp"
 
@@ -80,8 +84,9 @@ std::vector<Vec<D>> randomPoints(std::size_t n, const PeriodicBox<D>& box, unsig
   return x;
 }
 
-// Sort, build the list, check every pair against brute force and every r_ij
-// the pair loop forms against the brute-force nearest image.
+// Sort with the ghosts, build the list, check every pair (ghosts carry their
+// source's id) against brute force and every r_ij the pair loop forms
+// against the brute-force nearest image.
 template <int D>
 void checkPeriodicSearch(const PeriodicBox<D>& box, Real radius, std::size_t n, unsigned seed) {
   Particles<D> P;
@@ -92,22 +97,18 @@ void checkPeriodicSearch(const PeriodicBox<D>& box, Real radius, std::size_t n, 
   BOOST_TEST_REQUIRE(!expected.empty());
 
   HashGrid<D> grid(radius);
-  grid.setPeriodic(box);
-  grid.build(P.x);
-  P.permute(grid.order());
   NeighbourList<D> list;
-  list.build(grid, P.x, radius);
+  PeriodicGhosts<D> ghosts(box, radius);
+  sortByCell(P, grid, list, radius, &ghosts);
   PairSet found;
   std::size_t count = 0;
   Real worst = 0;
-  list.withSeparation([&](const auto& sep) {
-    for (std::size_t i = 0; i < P.size(); ++i)
-      forEachNeighbourSeparation(P, list, i, sep, [&](std::uint32_t j, const Vec<D>& rij) {
-        found.insert({P.id[i], P.id[j]});
-        ++count;
-        worst = std::max(worst, (rij - nearestImage<D>(P.x[i], P.x[j], box)).cwiseAbs().maxCoeff());
-      });
-  });
+  for (std::size_t i = 0; i < P.size(); ++i)
+    forEachNeighbourSeparation(P, list, i, [&](std::uint32_t j, const Vec<D>& rij) {
+      found.insert({P.id[i], P.id[j]});
+      ++count;
+      worst = std::max(worst, (rij - nearestImage<D>(P.x[i], P.x[j], box)).cwiseAbs().maxCoeff());
+    });
   BOOST_TEST(count == found.size());  // each neighbour listed once
   BOOST_TEST((found == expected), "periodic axes " << box.axes << ", box " << box.length.transpose() << " / support "
                                                    << radius << ": " << found.size() << " pairs found, "
@@ -115,6 +116,99 @@ void checkPeriodicSearch(const PeriodicBox<D>& box, Real radius, std::size_t n, 
   // The pair loop's r_ij is x_i - x_j shifted by whole box lengths: exact
   // up to the rounding of that one subtraction.
   BOOST_TEST(worst <= 1e-12 * box.length.maxCoeff());
+}
+
+
+// Points in the box with a fifth of them on the faces, and every corner of
+// the box ({lo, the largest double below hi} per axis) and the middle of
+// every edge/face, where the ghosts get their combined shifts.
+template <int D>
+std::vector<Vec<D>> pointsWithCorners(std::size_t n, const PeriodicBox<D>& box, unsigned seed) {
+  std::vector<Vec<D>> x = randomPoints<D>(n, box, seed);
+  const int combos = static_cast<int>(std::pow(3, D));
+  for (int k = 0; k < combos; ++k) {
+    Vec<D> c;
+    int rest = k;
+    for (int d = 0; d < D; ++d, rest /= 3) {
+      const Real lo = box.lo[d], hi = lo + box.length[d];
+      const int which = rest % 3;
+      c[d] = which == 0 ? lo : which == 1 ? std::nextafter(hi, lo) : lo + 0.5 * box.length[d];
+    }
+    x.push_back(c);
+  }
+  return x;
+}
+
+// Ghosts against an O(N^2) minimum-image reference, with walls (the last
+// quarter of the particles, so ghosts of walls too): for every owned
+// particle its fluid and wall neighbour sets (by id) and its summed density
+// rho_i = sum_j m_j W(|r_ij|) (the seed's density kernel, walls included),
+// r_ij the nearest image. Returns the number of particles checked.
+template <int D>
+void checkGhostsAgainstMinimumImage(const PeriodicBox<D>& box, Real support, std::size_t n, unsigned seed) {
+  Particles<D> P;
+  P.x = pointsWithCorners<D>(n, box, seed);
+  const std::size_t total = P.x.size(), nFluid = total - total / 4;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<Real> u(0.5, 1.5);
+  for (std::size_t i = 0; i < total; ++i) {
+    P.id.push_back(static_cast<std::int64_t>(i));
+    P.m.push_back(u(rng));
+  }
+  P.resize(total, nFluid);
+  const std::vector<Vec<D>> x0 = P.x;
+  const std::vector<Real> m0 = P.m;
+  const SeedKernels W(support);
+
+  // The reference, on the unsorted points.
+  std::map<std::int64_t, std::set<std::int64_t>> fluidNear, wallNear;
+  std::map<std::int64_t, Real> rhoRef;
+  for (std::size_t i = 0; i < total; ++i) {
+    Real rho = m0[i] * W.densityAtZero();
+    for (std::size_t j = 0; j < total; ++j) {
+      if (i == j) continue;
+      const Real r2 = nearestImage<D>(x0[i], x0[j], box).squaredNorm();
+      if (!(r2 < support * support)) continue;
+      rho += m0[j] * W.density(r2);
+      if (i >= nFluid && j >= nFluid) continue;  // no method couples two walls
+      (j < nFluid ? fluidNear : wallNear)[static_cast<std::int64_t>(i)].insert(static_cast<std::int64_t>(j));
+    }
+    rhoRef[static_cast<std::int64_t>(i)] = rho;
+  }
+
+  HashGrid<D> grid(support);
+  NeighbourList<D> list;
+  PeriodicGhosts<D> ghosts(box, support);
+  sortByCell(P, grid, list, support, &ghosts);
+  BOOST_TEST_REQUIRE(P.size() == total);  // ghosts are not counted
+  BOOST_TEST_REQUIRE(P.totalSize() > total);
+  computeSummationDensity(P, list, W, LinearEos{1, 1});  // fluid particles only
+  std::size_t setErrors = 0;
+  Real worstRho = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    std::set<std::int64_t> fluid, wall;
+    std::size_t listed = 0;
+    list.forEachByKind(
+        i,
+        [&](std::uint32_t j) {
+          BOOST_TEST_REQUIRE((j < nFluid || (j >= P.size() && j < P.ghostFluidEnd())));
+          fluid.insert(P.id[j]);
+          ++listed;
+        },
+        [&](std::uint32_t j) {
+          BOOST_TEST_REQUIRE((j >= P.ghostFluidEnd() || (j >= nFluid && j < P.size())));
+          wall.insert(P.id[j]);
+          ++listed;
+        });
+    setErrors += listed != fluid.size() + wall.size();  // each neighbour once
+    setErrors += fluid != fluidNear[P.id[i]];
+    setErrors += wall != wallNear[P.id[i]];
+    if (i < nFluid) worstRho = std::max(worstRho, std::abs(P.rho[i] / rhoRef[P.id[i]] - 1));
+  }
+  BOOST_TEST(setErrors == 0u, "periodic axes " << box.axes << ", box " << box.length.transpose() << " / support "
+                                               << support << ": " << setErrors << " wrong neighbour sets");
+  // Summation order differs from the reference's: round-off of ~50 terms.
+  BOOST_TEST(worstRho < 1e-12);
 }
 
 }  // namespace
@@ -278,6 +372,26 @@ BOOST_AUTO_TEST_CASE(momentum_kept_in_a_periodic_box) {
       run(makeScene<3>(cd, std::move(init)), scale);
     }
   }
+}
+
+// Ghosts, with walls, against the minimum image: boxes 2, 2.5, 3 and 4
+// supports wide, every subset of the axes, points on the faces, edges and
+// corners, 2D and 3D.
+BOOST_AUTO_TEST_CASE(ghosts_match_minimum_image_2d) {
+  unsigned seed = 300;
+  for (unsigned axes = 1; axes < 4; ++axes)
+    for (Real width : {2.0, 2.5, 3.0, 4.0})
+      checkGhostsAgainstMinimumImage<2>(PeriodicBox<2>{Vec<2>(-0.3, 0.7), Vec<2>(width * 0.1, 1.3 * width * 0.1), axes},
+                                        0.1, 250, seed++);
+}
+
+BOOST_AUTO_TEST_CASE(ghosts_match_minimum_image_3d) {
+  unsigned seed = 400;
+  for (unsigned axes = 1; axes < 8; ++axes)
+    for (Real width : {2.0, 3.0, 4.0})
+      checkGhostsAgainstMinimumImage<3>(
+          PeriodicBox<3>{Vec<3>(0.2, -1.0, 5.0), Vec<3>(width * 0.1, 1.2 * width * 0.1, 1.1 * width * 0.1), axes}, 0.1,
+          350, seed++);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -21,20 +21,18 @@
 // the distance test filters the extra candidates, and a bucket shared by two
 // stencil cells is listed only once.
 //
-// Periodic axes (setPeriodic, periodic_box.hpp): along a periodic axis of
-// length L the box holds n = floor(L / cellSize) cells of edge L / n (>= the
-// support), cell coordinates are taken modulo n and the stencil wraps
-// around, so a stencil at one face lists the cells at the opposite face.
-// (With n < 3 two stencil offsets name the same cell; its bucket is listed
-// once, as for any shared bucket.)
+// The grid knows no periodic axes: across a periodic face the neighbours
+// are ghost particles (periodic_ghosts.hpp), binned like any other.
 //
-// Kinds: when the particles from index `fluidCount` on are walls, walls get
-// a second table of buckets after the fluid's (bucket + T), so the sort keeps
-// every wall after every fluid particle, and a Stencil lists the fluid
-// ranges and the wall ranges around a cell separately.
+// Kinds: each kind of particle present gets a table of buckets of its own,
+// after the previous kind's (bucket + k T): fluid, walls (from index
+// `fluidCount`), ghosts of fluid (from `ownedCount`), ghosts of walls (from
+// `ghostFluidEnd`). So the sort keeps every wall after every fluid particle
+// and every ghost after the owned ones, and a Stencil lists the fluid
+// ranges (owned, then ghosts) and the wall ranges (owned, then ghosts)
+// around a cell separately. Without walls and ghosts there is one table.
 #pragma once
 
-#include "sph/periodic_box.hpp"
 #include "sph/types.hpp"
 
 #include <algorithm>
@@ -60,35 +58,34 @@ class HashGrid {
     }
   }
 
-  // Periodic axes of the domain box (none by default). Call before build().
-  void setPeriodic(const PeriodicBox<D>& box) {
-    box_ = box;
-    for (int d = 0; d < D; ++d) {
-      cells_[d] = 0;
-      if (!box.periodic(d)) continue;
-      cells_[d] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(box.length[d] / cellSize_)));
-      invCellAxis_[d] = static_cast<Real>(cells_[d]) / box.length[d];
-    }
-  }
-  const PeriodicBox<D>& periodicBox() const { return box_; }
-
   // Sort particles by bucket. Afterwards order()[k] is the old index of the
   // particle that goes to position k; apply it with Particles::permute().
-  // Particles [fluidCount, n) are walls (none by default).
-  void build(const std::vector<Vec<D>>& x, std::size_t fluidCount = SIZE_MAX) {
+  // Particles [fluidCount, ownedCount) are walls, [ownedCount,
+  // ghostFluidEnd) ghosts of fluid and [ghostFluidEnd, n) ghosts of walls
+  // (none of each by default).
+  void build(const std::vector<Vec<D>>& x, std::size_t fluidCount = SIZE_MAX, std::size_t ownedCount = SIZE_MAX,
+             std::size_t ghostFluidEnd = SIZE_MAX) {
     const std::size_t n = x.size();
-    fluidCount = std::min(fluidCount, n);
+    ownedCount = std::min(ownedCount, n);
+    fluidCount = std::min(fluidCount, ownedCount);
+    ghostFluidEnd = std::clamp(ghostFluidEnd, ownedCount, n);
     const std::size_t tableSize = tableSizeFor(n);
-    const std::size_t tables = fluidCount < n ? 2 : 1;
+    std::uint32_t tables = 1;
+    auto table = [&](bool present) { return present ? static_cast<std::uint32_t>(tableSize) * tables++ : 0u; };
+    wallOffset_ = table(fluidCount < ownedCount);
+    ghostOffset_ = table(ownedCount < ghostFluidEnd);
+    ghostWallOffset_ = table(ghostFluidEnd < n);
     if (cellStart_.size() != tables * tableSize + 1) cellStart_.assign(tables * tableSize + 1, 0);
     mask_ = tableSize - 1;
-    wallOffset_ = tables == 2 ? static_cast<std::uint32_t>(tableSize) : 0;
     bucket_.resize(n);
     order_.resize(n);
     setStrides(x);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i)
-      bucket_[i] = bucketOf(cellOf(x[i])) + (i < fluidCount ? 0 : wallOffset_);
+      bucket_[i] = bucketOf(cellOf(x[i])) + (i < fluidCount      ? 0
+                                             : i < ownedCount    ? wallOffset_
+                                             : i < ghostFluidEnd ? ghostOffset_
+                                                                 : ghostWallOffset_);
 
     // Counting sort, stable: count, inclusive prefix sum (cellStart_[b] = end
     // of bucket b), then scatter backwards so cellStart_[b] becomes its start.
@@ -108,9 +105,9 @@ class HashGrid {
   struct Stencil {
     IVec<D> cell;
     bool valid = false;
-    int count = 0, wallCount = 0;  // fluid ranges, then wall ranges
-    std::uint32_t begin[stencilSize], end[stencilSize];
-    std::uint32_t wallBegin[stencilSize], wallEnd[stencilSize];
+    int count = 0, wallCount = 0;  // fluid ranges, then wall ranges (owned, then ghosts)
+    std::uint32_t begin[2 * stencilSize], end[2 * stencilSize];
+    std::uint32_t wallBegin[2 * stencilSize], wallEnd[2 * stencilSize];
   };
 
   // Update `st` to the stencil of the cell holding x, recomputing only when
@@ -134,13 +131,7 @@ class HashGrid {
 
   IVec<D> cellOf(const Vec<D>& x) const {
     IVec<D> c;
-    for (int d = 0; d < D; ++d) {
-      if (box_.axes != 0 && box_.periodic(d)) {
-        c[d] = wrapCell(floorToInt((x[d] - box_.lo[d]) * invCellAxis_[d]), d);
-        continue;
-      }
-      c[d] = floorToInt(x[d] * invCell_);
-    }
+    for (int d = 0; d < D; ++d) c[d] = floorToInt(x[d] * invCell_);
     return c;
   }
 
@@ -150,39 +141,28 @@ class HashGrid {
     return t - (static_cast<Real>(t) > s);
   }
 
-  // A cell coordinate along periodic axis d, taken modulo its cell count
-  // (positions are within a box length of the box, cells within a count).
-  std::int64_t wrapCell(std::int64_t c, int d) const {
-    const std::int64_t n = cells_[d];
-    if (c >= n) c -= n;
-    else if (c < 0) c += n;
-    return c >= 0 && c < n ? c : ((c % n) + n) % n;
-  }
-
   void stencilAt(const IVec<D>& c, Stencil& st) const {
     st.cell = c;
     st.valid = true;
     std::uint32_t seen[stencilSize];
     int nSeen = 0;
     for (const IVec<D>& offset : stencil_) {
-      IVec<D> cell = c + offset;
-      if (box_.axes != 0)
-        for (int d = 0; d < D; ++d)
-          if (box_.periodic(d)) cell[d] = wrapCell(cell[d], d);
-      const std::uint32_t b = bucketOf(cell);
+      const std::uint32_t b = bucketOf(IVec<D>(c + offset));
       bool dup = false;
       for (int k = 0; k < nSeen; ++k) dup |= seen[k] == b;
       if (!dup) seen[nSeen++] = b;
     }
-    st.count = ranges(seen, nSeen, 0, st.begin, st.end);
-    st.wallCount = wallOffset_ ? ranges(seen, nSeen, wallOffset_, st.wallBegin, st.wallEnd) : 0;
+    st.count = ranges(seen, nSeen, 0, st.begin, st.end, 0);
+    if (ghostOffset_) st.count = ranges(seen, nSeen, ghostOffset_, st.begin, st.end, st.count);
+    st.wallCount = wallOffset_ ? ranges(seen, nSeen, wallOffset_, st.wallBegin, st.wallEnd, 0) : 0;
+    if (ghostWallOffset_) st.wallCount = ranges(seen, nSeen, ghostWallOffset_, st.wallBegin, st.wallEnd, st.wallCount);
   }
 
-  // The non-empty particle ranges of buckets b + offset, merged where one
-  // directly follows the previous one. Returns their number.
+  // Append to begin/end[count...] the non-empty particle ranges of buckets
+  // b + offset, merged where one directly follows the previous one. Returns
+  // the new number of ranges.
   int ranges(const std::uint32_t* buckets, int nBuckets, std::uint32_t offset, std::uint32_t* begin,
-             std::uint32_t* end) const {
-    int count = 0;
+             std::uint32_t* end, int count) const {
     for (int k = 0; k < nBuckets; ++k) {
       const std::uint32_t b = buckets[k] + offset;
       if (cellStart_[b] == cellStart_[b + 1]) continue;
@@ -214,12 +194,6 @@ class HashGrid {
     std::uint64_t stride = 1;
     for (int d = 0; d < D; ++d) {
       stride_[d] = stride;
-      if (box_.periodic(d)) {
-        // The stencil wraps: the cells 0 ... n-1 and no margin.
-        origin_[d] = 0;
-        stride *= static_cast<std::uint64_t>(cells_[d]);
-        continue;
-      }
       stride *= static_cast<std::uint64_t>(cHi[d] - cLo[d] + 3);
     }
   }
@@ -232,14 +206,13 @@ class HashGrid {
 
   Real cellSize_;
   Real invCell_;
-  PeriodicBox<D> box_;                  // periodic axes (none: axes == 0)
-  std::int64_t cells_[D] = {};          // cells along each periodic axis
-  Real invCellAxis_[D] = {};            // cells / length along each periodic axis
   IVec<D> stencil_[stencilSize];  // cell offsets {-1, 0, 1}^D, x fastest
   IVec<D> origin_ = IVec<D>::Zero();
   std::uint64_t stride_[D] = {};
   std::uint64_t mask_ = 0;
-  std::uint32_t wallOffset_ = 0;  // first wall bucket (0: no walls)
+  std::uint32_t wallOffset_ = 0;       // first wall bucket (0: no walls)
+  std::uint32_t ghostOffset_ = 0;      // first bucket of the ghosts of fluid (0: none)
+  std::uint32_t ghostWallOffset_ = 0;  // first bucket of the ghosts of walls (0: none)
   std::vector<std::uint32_t> cellStart_;  // bucket b: [cellStart_[b], cellStart_[b+1])
   std::vector<std::uint32_t> bucket_;
   std::vector<std::uint32_t> order_;

@@ -17,7 +17,7 @@ Real scaleMassToRestDensity(Particles<D>& P, const NeighbourList<D>& neighbours,
   std::fill(P.m.begin(), P.m.end(), Real(1));
   model.computeDensity(P, neighbours);
   Real sum = 0;
-  for (Real rho : P.rho) sum += rho;
+  for (std::size_t i = 0; i < P.size(); ++i) sum += P.rho[i];  // owned: no ghosts
   const Real m = static_cast<Real>(P.size()) * model.restDensity() / sum;
   std::fill(P.m.begin(), P.m.end(), m);
   return m;

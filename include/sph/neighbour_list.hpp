@@ -14,10 +14,11 @@
 // run); a wall particle lists only its fluid neighbours: no method here
 // couples two wall particles.
 //
-// Periodic axes: the grid's box (HashGrid::setPeriodic) is kept with the
-// list, the distance test uses the minimum image, and withSeparation()
-// hands the passes the separation that matches (periodic_box.hpp), chosen
-// once per pass: a case without periodic axes runs the plain x_i - x_j.
+// Ghosts (periodic_ghosts.hpp): particles from `ownedCount` on are ghosts;
+// they get no row of their own (no pass computes anything for them) but
+// appear in the owned particles' rows like any neighbour, ghosts of fluid
+// among the fluid neighbours and ghosts of walls among the wall ones, so
+// every pass forms the plain r_ij = x_i - x_j.
 #pragma once
 
 #include "sph/hash_grid.hpp"
@@ -32,33 +33,14 @@ namespace sph {
 template <int D>
 class NeighbourList {
  public:
+  // Rows for the owned particles [0, ownedCount): fluid below fluidCount.
   void build(const HashGrid<D>& grid, const std::vector<Vec<D>>& x, Real radius,
-             std::size_t fluidCount = SIZE_MAX) {
-    const std::size_t n = x.size();
+             std::size_t fluidCount = SIZE_MAX, std::size_t ownedCount = SIZE_MAX) {
+    const std::size_t n = std::min(ownedCount, x.size());
     fluidCount = std::min(fluidCount, n);
     const bool walls = fluidCount < n;
     if (walls) wallBegin_.resize(n);
     else std::vector<std::uint32_t>().swap(wallBegin_);
-    box_ = grid.periodicBox();
-    if (box_.any()) buildWith(grid, x, radius, fluidCount, MinimumImage<D>{box_});
-    else buildWith(grid, x, radius, fluidCount, FreeSpace{});
-  }
-
-  // f(separation) with the separation functor of this list's geometry:
-  // FreeSpace, or MinimumImage when an axis is periodic.
-  template <class F>
-  decltype(auto) withSeparation(F&& f) const {
-    if (box_.any()) return f(MinimumImage<D>{box_});
-    return f(FreeSpace{});
-  }
-  const PeriodicBox<D>& periodicBox() const { return box_; }
-
- private:
-  template <class Sep>
-  void buildWith(const HashGrid<D>& grid, const std::vector<Vec<D>>& x, Real radius, std::size_t fluidCount,
-                 const Sep& sep) {
-    const std::size_t n = x.size();
-    const bool walls = fluidCount < n;
     const Real radius2 = radius * radius;
     const int threads = omp_get_max_threads();
     if (static_cast<int>(chunks_.size()) < threads) {
@@ -80,11 +62,11 @@ class NeighbourList {
         begin_[i] = static_cast<std::uint32_t>(used);
         const Vec<D> xi = x[i];
         grid.updateStencil(xi, stencil);
-        used = scan(list, used, i, xi, x, radius2, stencil.begin, stencil.end, stencil.count, sep);
+        used = scan(list, used, i, xi, x, radius2, stencil.begin, stencil.end, stencil.count);
         if (!walls) continue;
         wallBegin_[i] = static_cast<std::uint32_t>(used);
         if (i < fluidCount)
-          used = scan(list, used, i, xi, x, radius2, stencil.wallBegin, stencil.wallEnd, stencil.wallCount, sep);
+          used = scan(list, used, i, xi, x, radius2, stencil.wallBegin, stencil.wallEnd, stencil.wallCount);
       }
       used_[t] = used;
       chunkStart_[t] = lo;
@@ -98,17 +80,16 @@ class NeighbourList {
   // Append to list[used...] the neighbours of xi in the particle ranges
   // [begin[s], end[s]); returns the new fill. Branch-free: write always,
   // advance only for a neighbour.
-  template <class Sep>
   static std::size_t scan(std::vector<std::uint32_t>& list, std::size_t used, std::size_t i, const Vec<D>& xi,
                           const std::vector<Vec<D>>& x, Real radius2, const std::uint32_t* begin,
-                          const std::uint32_t* end, int ranges, const Sep& sep) {
+                          const std::uint32_t* end, int ranges) {
     for (int s = 0; s < ranges; ++s) {
       const std::uint32_t b = begin[s], e = end[s];
       if (used + (e - b) > list.size()) list.resize(used + (e - b) + used / 4 + 64);
       std::uint32_t* out = list.data();
       for (std::uint32_t j = b; j < e; ++j) {
         out[used] = j;
-        used += (sep(xi, x[j]).squaredNorm() < radius2) & (j != i);
+        used += (Vec<D>(xi - x[j]).squaredNorm() < radius2) & (j != i);
       }
     }
     return used;
@@ -164,7 +145,6 @@ class NeighbourList {
   std::vector<std::uint32_t> wallBegin_;            // start of i's wall neighbours (walls only)
   std::vector<std::size_t> chunkStart_;             // first particle of each chunk
   std::size_t usedChunks_ = 0;
-  PeriodicBox<D> box_;                              // the grid's periodic axes
 };
 
 }  // namespace sph

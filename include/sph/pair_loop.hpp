@@ -25,10 +25,11 @@
 // (NoGradientCorrection, or GradientCorrection with no matrices) gradWC is
 // grad W itself.
 //
-// Periodic axes: r_ij is the minimum image (periodic_box.hpp). The
-// separation is chosen once per loop (NeighbourList::withSeparation), so a
-// case without periodic axes runs the plain x_i - x_j, bit for bit as
-// before. The other passes that need r_ij (summation density, the wall
+// r_ij is always x_i - x_j: along periodic axes a neighbour across a face
+// is a ghost particle, a copy of it shifted by the box length
+// (periodic_ghosts.hpp), so no pair needs a minimum image. The loop runs
+// over owned particles only (fluid, then walls); ghosts are read as
+// neighbours. The other passes that need r_ij (summation density, the wall
 // extrapolation, repulsive walls) take it from forEachNeighbourSeparation()
 // below, so r_ij has one definition.
 #pragma once
@@ -125,16 +126,15 @@ inline void addPair(const Pack& pack, const Pair<D>& c, const Particles<D>& P, P
   std::apply([&](const auto&... t) { (t.add(c, P, r), ...); }, pack);
 }
 
-// Fill in r, q and the kernel terms of the pair (i, j); `sep` forms r_ij
-// (FreeSpace or MinimumImage).
+// Fill in r_ij = x_i - x_j, r, q and the kernel terms of the pair (i, j).
 // `correct` gives the corrected gradient gradWC.
-template <int D, class Kernel, class Sep = FreeSpace, class Correction = NoGradientCorrection>
+template <int D, class Kernel, class Correction = NoGradientCorrection>
 [[gnu::always_inline]] inline Pair<D> makePair(std::uint32_t i, std::uint32_t j, const Vec<D>& xi, const Vec<D>& xj,
-                        const Kernel& kernel, Real invSupport, const Sep& sep = {}, const Correction& correct = {}) {
+                        const Kernel& kernel, Real invSupport, const Correction& correct = {}) {
   Pair<D> c;
   c.i = i;
   c.j = j;
-  c.rij = sep(xi, xj);
+  c.rij = xi - xj;
   c.r = c.rij.norm();
   c.q = c.r * invSupport;
   if constexpr (!std::is_same_v<Kernel, NoPairKernel>) {
@@ -158,14 +158,17 @@ struct PairLoopParts {
   bool wallParticles = false;  // wall particles get rates of their own
 };
 
-// runPairLoop with the separation chosen.
+// Returns the term bits of the packs it ran.
+//   epilogue(i, P, rates)       writes particle i's rates (fluid particles)
+//   wallEpilogue(i, P, rates)   the same for wall particles
+// `correct` corrects the gradients of the fluid particles' pairs (wall
+// particles' own rates use grad W as it is).
 template <int D, class Kernel, class FluidPairs, class WallPairs, class WallParticlePairs, class Epilogue,
-          class WallEpilogue, class Sep, class Correction>
-unsigned runPairLoopWith(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
-                         const FluidPairs& fluidPairs, const WallPairs& wallPairs,
-                         const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
-                         const WallEpilogue& wallEpilogue, PairLoopParts parts, const Sep& sep,
-                         const Correction& correct) {
+          class WallEpilogue, class Correction = NoGradientCorrection>
+unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
+                     const FluidPairs& fluidPairs, const WallPairs& wallPairs,
+                     const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
+                     const WallEpilogue& wallEpilogue, PairLoopParts parts = {}, const Correction& correct = {}) {
   const std::size_t n = P.size(), nFluid = P.fluidCount();
   const Real invSupport = 1 / support;
   const bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0 && parts.wallParticles && P.hasWalls();
@@ -176,10 +179,10 @@ unsigned runPairLoopWith(Particles<D>& P, const NeighbourList<D>& neighbours, co
       PairRates<D> r;
       const Vec<D> xi = P.x[i];
       const auto ii = static_cast<std::uint32_t>(i);
-      auto fluid = [&](std::uint32_t j) { addPair(fluidPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, sep, correct), P, r); };
+      auto fluid = [&](std::uint32_t j) { addPair(fluidPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, correct), P, r); };
       if constexpr (decltype(byKind)::value)
         neighbours.forEachByKind(i, fluid, [&](std::uint32_t j) {
-          addPair(wallPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, sep, correct), P, r);
+          addPair(wallPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, correct), P, r);
         });
       else
         neighbours.forEach(i, fluid);
@@ -199,7 +202,7 @@ unsigned runPairLoopWith(Particles<D>& P, const NeighbourList<D>& neighbours, co
         const Vec<D> xi = P.x[i];
         const auto ii = static_cast<std::uint32_t>(i);
         neighbours.forEach(
-            i, [&](std::uint32_t j) { addPair(wallParticlePairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, sep), P, r); });
+            i, [&](std::uint32_t j) { addPair(wallParticlePairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r); });
         wallEpilogue(i, P, r);
       }
     }
@@ -210,41 +213,23 @@ unsigned runPairLoopWith(Particles<D>& P, const NeighbourList<D>& neighbours, co
   return bits;
 }
 
-// Returns the term bits of the packs it ran.
-//   epilogue(i, P, rates)       writes particle i's rates (fluid particles)
-//   wallEpilogue(i, P, rates)   the same for wall particles
-// `correct` corrects the gradients of the fluid particles' pairs (wall
-// particles' own rates use grad W as it is).
-template <int D, class Kernel, class FluidPairs, class WallPairs, class WallParticlePairs, class Epilogue,
-          class WallEpilogue, class Correction = NoGradientCorrection>
-unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
-                     const FluidPairs& fluidPairs, const WallPairs& wallPairs,
-                     const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
-                     const WallEpilogue& wallEpilogue, PairLoopParts parts = {}, const Correction& correct = {}) {
-  return neighbours.withSeparation([&](const auto& sep) {
-    return runPairLoopWith(P, neighbours, kernel, support, fluidPairs, wallPairs, wallParticlePairs, epilogue,
-                           wallEpilogue, parts, sep, correct);
-  });
-}
-
-// f(j, r_ij) for every neighbour j of particle i, r_ij = x_i - x_j or its
-// minimum image: for the passes that walk the neighbours without the pair
+// f(j, r_ij) for every neighbour j of particle i, r_ij = x_i - x_j: for the passes that walk the neighbours without the pair
 // evaluators. `byKind`: f for the fluid neighbours, g for the wall ones.
-template <int D, class Sep, class F>
+template <int D, class F>
 [[gnu::always_inline]] inline void forEachNeighbourSeparation(const Particles<D>& P,
                                                               const NeighbourList<D>& neighbours, std::size_t i,
-                                                              const Sep& sep, F&& f) {
+                                                              F&& f) {
   const Vec<D> xi = P.x[i];
-  neighbours.forEach(i, [&](std::uint32_t j) { f(j, Vec<D>(sep(xi, P.x[j]))); });
+  neighbours.forEach(i, [&](std::uint32_t j) { f(j, Vec<D>(xi - P.x[j])); });
 }
-template <int D, class Sep, class F, class G>
+template <int D, class F, class G>
 [[gnu::always_inline]] inline void forEachNeighbourSeparationByKind(const Particles<D>& P,
                                                                     const NeighbourList<D>& neighbours,
-                                                                    std::size_t i, const Sep& sep, F&& f, G&& g) {
+                                                                    std::size_t i, F&& f, G&& g) {
   const Vec<D> xi = P.x[i];
   neighbours.forEachByKind(
-      i, [&](std::uint32_t j) { f(j, Vec<D>(sep(xi, P.x[j]))); },
-      [&](std::uint32_t j) { g(j, Vec<D>(sep(xi, P.x[j]))); });
+      i, [&](std::uint32_t j) { f(j, Vec<D>(xi - P.x[j])); },
+      [&](std::uint32_t j) { g(j, Vec<D>(xi - P.x[j])); });
 }
 
 }  // namespace sph

@@ -53,7 +53,7 @@ class ParticleShifting {
     shift_.resize(n);
     std::visit(
         [&](const auto& W) {
-          neighbours.withSeparation([&](const auto& sep) {
+          {
             const Real h = W.h();
             const Real invWdx = 1 / W.W(spacing_);
             const Real scale = coefficient_ * h * dt;
@@ -67,20 +67,25 @@ class ParticleShifting {
               for (std::size_t i = 0; i < n; ++i) {
                 Vec<D> gradC = Vec<D>::Zero();
                 Real sum = P.m[i] / P.rho[i] * W.W(0);
-                forEachNeighbourSeparation(P, neighbours, i, sep, [&](std::uint32_t j, const Vec<D>& rij) {
+                // Fluid neighbours (ghosts of fluid included) with their own
+                // volume, wall ones with the rest volume m / rho0.
+                auto add = [&](std::uint32_t j, const Vec<D>& rij, bool fluid) {
                   const Real r = rij.norm();
                   if (r <= 0) return;
-                  const Real Vj = j < n ? P.m[j] / P.rho[j] : P.m[j] / rho0_;
+                  const Real Vj = fluid ? P.m[j] / P.rho[j] : P.m[j] / rho0_;
                   const Real w = W.W(r), q = w * invWdx, q2 = q * q;
                   sum += Vj * w;
                   gradC += (Vj * (1 + 0.2 * q2 * q2)) * W.gradW(rij, r);
-                });
+                };
+                forEachNeighbourSeparationByKind(
+                    P, neighbours, i, [&](std::uint32_t j, const Vec<D>& rij) { add(j, rij, true); },
+                    [&](std::uint32_t j, const Vec<D>& rij) { add(j, rij, false); });
                 shift_[i] = sum < 0.9 ? Vec<D>::Zero() : Vec<D>(-scale * speed * gradC);
               }
 #pragma omp for schedule(static)
               for (std::size_t i = 0; i < n; ++i) P.x[i] += shift_[i];
             }
-          });
+          }
         },
         kernel_);
   }

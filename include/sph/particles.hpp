@@ -5,9 +5,18 @@
 // the model or the integrator of a scene asks for them, so a scene pays no
 // memory for what it does not use.
 //
-// Kinds: particles [0, fluidCount()) are fluid, the rest are walls (the
-// kind field, allocated only when there are walls, says which is which and
-// the neighbour grid keeps walls after the fluid through every re-sort).
+// Ranges: particles [0, fluidCount()) are fluid, [fluidCount(), size())
+// walls (the kind field, allocated only when there are walls, says which is
+// which and the neighbour grid keeps walls after the fluid through every
+// re-sort); these are the owned particles. After them, while a periodic box
+// has them (periodic_ghosts.hpp), come the ghosts [size(), totalSize()):
+// copies of owned particles shifted by a box length, ghosts of fluid first,
+// then ghosts of walls. range(ParticleRangeName::kGhost) etc. name the three. Every array has
+// totalSize() entries; size() counts the owned particles only, so the
+// integrators, the checks, the energies and the output never see a ghost.
+// A ghost is the output of no pass: refreshGhosts() copies its fields from
+// its source (ghostSource) and puts it at the source's position plus its
+// shift.
 //
 // permute() reorders the state and stage fields in one parallel pass (each
 // has a shadow buffer of its own, kept between calls, so the step loop never
@@ -117,6 +126,13 @@ static_assert([] {
   return true;
 }(), "kFieldTable rows must be in FieldId order");
 
+// A half-open range of particle indices.
+struct ParticleRange {
+  std::size_t begin = 0, end = 0;
+  std::size_t size() const { return end - begin; }
+};
+enum class ParticleRangeName { kFluid, kWall, kGhost };
+
 template <int D>
 struct Particles : FieldArrays<D> {
   using FieldArrays<D>::x;
@@ -129,10 +145,20 @@ struct Particles : FieldArrays<D> {
   using FieldArrays<D>::kind;
   using FieldArrays<D>::vXsph;
 
-  std::size_t size() const { return x.size(); }
+  // Owned particles (fluid and walls); the ghosts follow them.
+  std::size_t size() const { return x.size() - ghostSource_.size(); }
+  std::size_t totalSize() const { return x.size(); }
   // Fluid particles are [0, fluidCount()), walls [fluidCount(), size()).
   std::size_t fluidCount() const { return fluid_; }
   bool hasWalls() const { return fluid_ < size(); }
+  ParticleRange range(ParticleRangeName k) const {
+    if (k == ParticleRangeName::kFluid) return {0, fluid_};
+    if (k == ParticleRangeName::kWall) return {fluid_, size()};
+    return {size(), totalSize()};
+  }
+  // Ghosts of fluid particles are [size(), ghostFluidEnd()), of walls the rest.
+  std::size_t ghostFluidEnd() const { return size() + ghostFluid_; }
+  const std::vector<std::uint32_t>& ghostSource() const { return ghostSource_; }
   FieldSet allocated() const { return allocated_; }
   bool has(FieldId f) const { return (allocated_ >> f) & 1u; }
 
@@ -140,6 +166,7 @@ struct Particles : FieldArrays<D> {
   // already), with walls from index `fluidCount` on (all fluid by default).
   // Other fields are left as they are until allocate().
   void resize(std::size_t n, std::size_t fluidCount = SIZE_MAX) {
+    dropGhostRecords();
     x.resize(n);
     v.resize(n, Vec<D>::Zero());
     a.resize(n, Vec<D>::Zero());
@@ -167,6 +194,7 @@ struct Particles : FieldArrays<D> {
   // kind field too when there are walls), release the others, and give the
   // permuted fields their shadow buffers.
   void allocate(FieldSet wanted) {
+    clearGhosts();
     wanted |= kCoreFields;
     if (hasWalls()) wanted |= fieldBit(kFieldKind);
     const std::size_t n = size();
@@ -177,13 +205,74 @@ struct Particles : FieldArrays<D> {
     setPermuted();
   }
 
+  // Drop the ghosts (the arrays keep their capacity).
+  void clearGhosts() {
+    if (ghostSource_.empty()) return;
+    const std::size_t n = size();
+    dropGhostRecords();
+    this->forEachField([&](const FieldInfo& info, auto& field) {
+      if ((allocated_ >> info.id) & 1u) field.resize(n);
+    });
+  }
+
+  // Append ghosts of the owned particles: ghost g copies source[g] shifted
+  // by shift[g]; the sources of fluid ghosts must come first (the first
+  // `fluidGhosts`). Fields are filled by refreshGhosts().
+  void addGhosts(const std::vector<std::uint32_t>& source, const std::vector<Vec<D>>& shift,
+                 std::size_t fluidGhosts) {
+    clearGhosts();
+    const std::size_t total = size() + source.size();
+    ghostSource_ = source;
+    ghostShift_ = shift;
+    ghostFluid_ = fluidGhosts;
+    this->forEachField([&](const FieldInfo& info, auto& field) {
+      if ((allocated_ >> info.id) & 1u) growTo(field, total);
+    });
+    refreshGhosts();
+  }
+
+  // Copy the fields in `fields` (all allocated ones by default) of every
+  // ghost from its source; x becomes the source's x plus the shift.
+  void refreshGhosts(FieldSet fields = ~FieldSet(0)) {
+    if (ghostSource_.empty()) return;
+#pragma omp parallel if (ghostSource_.size() >= kMinParallelSize)
+    refreshGhostsInTeam(fields);
+  }
+
+  // The same, called by every thread of a parallel region (the work is
+  // shared, with a barrier at the end); outside one it runs serially.
+  void refreshGhostsInTeam(FieldSet fields = ~FieldSet(0)) {
+    const std::size_t ng = ghostSource_.size();
+    if (ng == 0) return;
+    const std::size_t owned = size();
+    fields &= allocated_;
+    const std::uint32_t* src = ghostSource_.data();
+    this->forEachField([&](const FieldInfo& info, auto& field) {
+      if (((fields >> info.id) & 1u) == 0 || info.id == kFieldX) return;
+#pragma omp for schedule(static) nowait
+      for (std::size_t g = 0; g < ng; ++g) field[owned + g] = field[src[g]];
+    });
+    if (fields & fieldBit(kFieldX)) {
+#pragma omp for schedule(static) nowait
+      for (std::size_t g = 0; g < ng; ++g) x[owned + g] = x[src[g]] + ghostShift_[g];
+    }
+#pragma omp barrier
+  }
+
   // Reorder the state and stage fields so that new particle k is old
   // particle order[k]: one parallel region, one gather loop per field with
-  // no barrier between them. The grid sorts walls after the fluid, so the
-  // fluid count does not change.
+  // no barrier between them. The grid sorts walls after the fluid and
+  // ghosts after the owned particles, so the ranges do not change. The
+  // ghosts' sources follow their particles and are then refreshed (all
+  // fields: the non-permuted ones of a ghost were never its own).
   void permute(const std::vector<std::uint32_t>& order) {
-    const std::size_t n = size();
+    const std::size_t n = totalSize();
     const FieldSet permuted = permuted_;
+    FieldArrays<D>::zip(
+        [&](const FieldInfo& info, auto& field, auto& shadow) {
+          if ((permuted >> info.id) & 1u) growTo(shadow, field.size());
+        },
+        *this, shadow_);
 #pragma omp parallel if (n >= kMinParallelSize)
     FieldArrays<D>::zip(
         [&](const FieldInfo& info, auto& field, auto& shadow) {
@@ -197,10 +286,28 @@ struct Particles : FieldArrays<D> {
           if ((permuted >> info.id) & 1u) field.swap(shadow);
         },
         *this, shadow_);
+    if (ghostSource_.empty()) return;
+    const std::size_t owned = size(), ng = ghostSource_.size();
+    newIndex_.resize(owned);
+    for (std::size_t k = 0; k < owned; ++k) newIndex_[order[k]] = static_cast<std::uint32_t>(k);
+    sourceShadow_.resize(ng);
+    shiftShadow_.resize(ng);
+    for (std::size_t g = 0; g < ng; ++g) {
+      const std::size_t old = order[owned + g] - owned;
+      sourceShadow_[g] = newIndex_[ghostSource_[old]];
+      shiftShadow_[g] = ghostShift_[old];
+    }
+    ghostSource_.swap(sourceShadow_);
+    ghostShift_.swap(shiftShadow_);
+    refreshGhosts();
   }
 
   // Every array of the particles, shadow buffers included [bytes].
-  std::size_t bytesAllocated() const { return FieldArrays<D>::bytesAllocated() + shadow_.bytesAllocated(); }
+  std::size_t bytesAllocated() const {
+    return FieldArrays<D>::bytesAllocated() + shadow_.bytesAllocated() +
+           (ghostSource_.capacity() + sourceShadow_.capacity() + newIndex_.capacity()) * sizeof(std::uint32_t) +
+           (ghostShift_.capacity() + shiftShadow_.capacity()) * sizeof(Vec<D>);
+  }
 
  private:
   // The permuted fields (allocated, with a permuted role) and their shadows.
@@ -218,7 +325,27 @@ struct Particles : FieldArrays<D> {
     shadow_.sizeFields(permuted_, size());
   }
 
+  // Resize to n; when that needs more room, reserve a quarter of the ghosts
+  // more (not the vector's doubling: the ghosts are a fraction of the
+  // particles, and their number changes a little at every sort).
+  template <class V>
+  void growTo(V& array, std::size_t n) {
+    if (n > array.capacity()) array.reserve(n + ghostSource_.size() / 4 + 16);
+    array.resize(n);
+  }
+
+  void dropGhostRecords() {
+    ghostSource_.clear();
+    ghostShift_.clear();
+    ghostFluid_ = 0;
+  }
+
   std::size_t fluid_ = 0;
+  std::size_t ghostFluid_ = 0;              // ghosts of fluid particles
+  std::vector<std::uint32_t> ghostSource_;  // ghost g copies owned particle ghostSource_[g]
+  std::vector<Vec<D>> ghostShift_;          // ... shifted by ghostShift_[g]
+  std::vector<std::uint32_t> sourceShadow_, newIndex_;
+  std::vector<Vec<D>> shiftShadow_;
   FieldSet allocated_ = 0;
   FieldSet permuted_ = 0;
   FieldArrays<D> shadow_;

@@ -3,22 +3,16 @@
 //
 // Along a periodic axis a of length L_a = hi_a - lo_a, a particle leaving
 // through one face re-enters through the other (positions wrap into
-// [lo_a, hi_a)), and a pair interacts through its nearest image, the
-// minimum-image convention (Allen & Tildesley, "Computer Simulation of
-// Liquids", 1987, sec. 1.5.2):
+// [lo_a, hi_a) at every sort), and the particles near one face interact
+// with those near the other through ghost particles (periodic_ghosts.hpp),
+// so no pair ever needs a minimum image.
 //
-//   r_ij,a <- r_ij,a - L_a round(r_ij,a / L_a)
-//
-// With L_a >= 2 x support at most one image of j lies within the support of
-// i, so the nearest image is the only one that interacts (validateCase
-// refuses narrower periodic boxes). The separation is computed by one of two
-// value types, chosen once per pass, never per pair:
-//   FreeSpace       r_ij = x_i - x_j            (no periodic axis: as before,
-//                                                bit for bit)
-//   MinimumImage    r_ij = nearest image of x_i - x_j
-// Positions are within one box length of [lo, hi) (they are wrapped at
-// every stage), so |r_ij,a| < 1.5 L_a and one compare-and-shift per axis is
-// the exact nearest image.
+// minimumImage() is kept for what is not a pair of particles (a probe point
+// and the particles around it) and for tests that check the ghosts against
+// it:
+//   r_a <- r_a - L_a round(r_a / L_a)
+// (Allen & Tildesley, "Computer Simulation of Liquids", 1987, sec. 1.5.2),
+// exact for |r_a| < 1.5 L_a with one compare-and-shift per axis.
 #pragma once
 
 #include "sph/types.hpp"
@@ -57,21 +51,6 @@ struct PeriodicBox {
       if (!(x[a] < hi)) x[a] = lo[a];
     }
   }
-};
-
-// r_ij = x_i - x_j, no periodic axis.
-struct FreeSpace {
-  template <int D>
-  Vec<D> operator()(const Vec<D>& xi, const Vec<D>& xj) const {
-    return xi - xj;
-  }
-};
-
-// r_ij = the nearest image of x_i - x_j.
-template <int D>
-struct MinimumImage {
-  PeriodicBox<D> box;
-  Vec<D> operator()(const Vec<D>& xi, const Vec<D>& xj) const { return box.minimumImage(Vec<D>(xi - xj)); }
 };
 
 }  // namespace sph

@@ -54,7 +54,6 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
                           Real rho0 = 0) {
   const std::size_t nFluid = P.fluidCount();
   const Real close2 = dx > 0 ? 0.04 * dx * dx : 0;
-  return neighbours.withSeparation([&](const auto& sep) {
   Real v2 = 0, rhoMax = 0;
   std::size_t isolated = 0, paired = 0, pairs = 0;
 #pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize) \
@@ -67,7 +66,7 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
     const Vec<D> xi = P.x[i];
     neighbours.forEach(i, [&](std::uint32_t j) {
       ++count;
-      close |= sep(xi, P.x[j]).squaredNorm() < close2;
+      close |= Vec<D>(xi - P.x[j]).squaredNorm() < close2;
     });
     pairs += count;
     isolated += count == 0;
@@ -84,7 +83,6 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
     s.pairedFraction = static_cast<Real>(paired) / n;
   }
   return s;
-  });
 }
 
 class RegimeCheck {

@@ -1,9 +1,13 @@
 // Scene<D>: particles, neighbour grid, model, walls, integrator and time-step
 // control, advanced one step at a time.
 //
-// evaluate() = sort by cell (permuting the state and stage fields), rebuild
-// the grid and the neighbour list, then the model's passes at the current
-// state. One step = the integrator's advance (as many evaluate() calls as it
+// evaluate() = sort by cell (permuting the state and stage fields; with a
+// periodic box, wrapping the particles and making their ghosts,
+// periodic_ghosts.hpp), rebuild the grid and the neighbour list, then the
+// model's passes at the current state. The ghosts are refreshed from their
+// sources wherever the owned particles changed and a neighbour walk follows:
+// between passes (Model::sync), before the integrators' density-rate pass,
+// after the mass scaling and after each step. One step = the integrator's advance (as many evaluate() calls as it
 // needs: 1 for leap-frog and the Euler schemes, 4 for RK4; the walls act on
 // each particle right after its position update), then one loop that
 // finishes every particle, checks the state and reduces what the next time
@@ -21,6 +25,7 @@
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
 #include "sph/particle_shifting.hpp"
+#include "sph/periodic_ghosts.hpp"
 #include "sph/state_check.hpp"
 #include "sph/time_step.hpp"
 #include "sph/wall_motion.hpp"
@@ -65,10 +70,10 @@ class Scene {
 
   // Periodic axes of the domain box; call before initialise() or resume().
   void setPeriodic(const PeriodicBox<D>& box) {
-    periodic_ = box;
-    grid_.setPeriodic(box);
+    if (box.any()) ghosts_.emplace(box, model_.support());
+    else ghosts_.reset();
   }
-  const PeriodicBox<D>& periodicBox() const { return periodic_; }
+  PeriodicBox<D> periodicBox() const { return ghosts_ ? ghosts_->box() : PeriodicBox<D>{}; }
   // Particle shifting at the start of every step (particle_shifting.hpp).
   void setShifting(ParticleShifting<D> shifting) { shifting_.emplace(std::move(shifting)); }
   // A paddle's prescribed motion, moved at the start of every step (wall_motion.hpp).
@@ -112,6 +117,7 @@ class Scene {
     return P_.size() ? static_cast<Real>(neighbours_.pairCount()) / static_cast<Real>(P_.size()) : 0;
   }
 
+  // Every array of the scene, the ghosts' included [bytes].
   std::size_t bytesAllocated() const {
     return P_.bytesAllocated() + grid_.bytesAllocated() + neighbours_.bytesAllocated();
   }
@@ -170,7 +176,7 @@ class Scene {
   std::optional<DampedReflectingWalls<D>> walls_;
   StateCheck<D> check_;
   TimeStepControl timeStep_;
-  PeriodicBox<D> periodic_;
+  std::optional<PeriodicGhosts<D>> ghosts_;
   std::optional<ParticleShifting<D>> shifting_;
   std::optional<SinusoidalWallMotion<D>> wallMotion_;
   std::optional<WallGuard<D>> guard_;
@@ -191,7 +197,10 @@ class Scene {
 template <int D>
 std::optional<StateFailure> Scene<D>::initialise(bool scaleMass) {
   sort();
-  if (scaleMass) scaleMassToRestDensity(P_, neighbours_, model_);
+  if (scaleMass) {
+    scaleMassToRestDensity(P_, neighbours_, model_);
+    P_.refreshGhosts();
+  }
   model_.evaluate(P_, neighbours_, StepContext{step_, time_, 0});
   return finishStep([](std::size_t) {});
 }
@@ -202,7 +211,7 @@ std::optional<StateFailure> Scene<D>::resume(long step, Real time) {
   time_ = time;
   sort();
   const auto& order = grid_.order();
-  for (std::size_t k = 0; k < order.size(); ++k)
+  for (std::size_t k = 0; k < P_.size(); ++k)
     if (order[k] != k)
       throw std::runtime_error("the snapshot is not in the order sph keeps its particles (written by another program?)");
   model_.refreshCspmMatrices(P_, neighbours_);
@@ -232,9 +241,12 @@ std::optional<StateFailure> Scene<D>::step(Real landOn) {
   std::visit(
       [&](const auto& integrator) {
         context_.densityRateApart = std::decay_t<decltype(integrator)>::kDensityRateApart;
-        integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain,
-                           [&] { model_.densityRate(P_, neighbours_); });
+        integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain, [&] {
+          P_.refreshGhosts();
+          model_.densityRate(P_, neighbours_);
+        });
         failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
+        P_.refreshGhosts();
       },
       integrator_);
   guardActions_ += guarded;
@@ -260,14 +272,7 @@ Energy Scene<D>::energy() const {
 
 template <int D>
 void Scene<D>::sort() {
-  if (periodic_.any()) {
-    const std::size_t n = P_.size();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-    for (std::size_t i = 0; i < n; ++i) periodic_.wrap(P_.x[i]);
-  }
-  grid_.build(P_.x, P_.fluidCount());
-  P_.permute(grid_.order());
-  neighbours_.build(grid_, P_.x, model_.support(), P_.fluidCount());
+  sortByCell(P_, grid_, neighbours_, model_.support(), ghosts_ ? &*ghosts_ : nullptr);
 }
 
 template <int D>

@@ -42,14 +42,14 @@ void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, con
                         const Vec<D>& bodyAcceleration, bool noSlip, Real rho0,
                         const WallAcceleration<D>& moving = {}) {
   const Vec<D> movingBody = bodyAcceleration - moving.a;
-  neighbours.withSeparation([&](const auto& sep) {
+  {
     const std::size_t n = P.size(), nFluid = P.fluidCount();
     const bool withSoundSpeed = !P.c.empty();
 #pragma omp parallel for schedule(static) if (n - nFluid >= kMinParallelSize)
     for (std::size_t w = nFluid; w < n; ++w) {
       Real sumW = 0, sumPW = 0;
       Vec<D> sumRhoRW = Vec<D>::Zero(), sumVW = Vec<D>::Zero();
-      forEachNeighbourSeparation(P, neighbours, w, sep, [&](std::uint32_t f, const Vec<D>& rwf) {
+      forEachNeighbourSeparation(P, neighbours, w, [&](std::uint32_t f, const Vec<D>& rwf) {
         const Real W = kernel.W(rwf.norm());
         sumW += W;
         sumPW += P.p[f] * W;
@@ -70,7 +70,7 @@ void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, con
       }
       if (withSoundSpeed) P.c[w] = eos.soundSpeed(P.rho[w]);
     }
-  });
+  }
 }
 
 }  // namespace sph

@@ -53,17 +53,17 @@ struct RepulsiveWallsPass {
 // Defined here, instantiated once (src/instantiate_*.cpp).
 template <int D>
 unsigned RepulsiveWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-  neighbours.withSeparation([&](const auto& sep) {
+  {
     const std::size_t nFluid = P.fluidCount();
 #pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
     for (std::size_t i = 0; i < nFluid; ++i) {
       Vec<D> a = Vec<D>::Zero();
       forEachNeighbourSeparationByKind(
-          P, neighbours, i, sep, [](std::uint32_t, const Vec<D>&) {},
+          P, neighbours, i, [](std::uint32_t, const Vec<D>&) {},
           [&](std::uint32_t, const Vec<D>& rij) { a += force.factor(rij.norm()) * rij; });
       P.a[i] += a;
     }
-  });
+  }
   return term_bits::kRepulsiveWalls;
 }
 

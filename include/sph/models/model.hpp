@@ -2,8 +2,9 @@
 //
 // evaluate() runs the passes in order on the sorted particles and their
 // neighbour list, each with the step context (step index, time, dt);
-// between two passes sits sync(), the hook where a ghost or halo refresh
-// will go (a no-op today). A pass is one of the value types of passes.hpp
+// between two passes sits sync(), which refreshes the periodic ghosts from
+// their sources (periodic_ghosts.hpp; all allocated fields: the passes do
+// not declare theirs yet), the hook where MPI halos will go too. A pass is one of the value types of passes.hpp
 // and reports the term bits it ran, so a test can show that a switched-off
 // term never runs. A second, usually empty, list runs after a step on the
 // finished state (afterStep: the density re-initialisations), and the
@@ -130,8 +131,10 @@ class Model {
   }
 
  private:
-  // Between passes: where ghost particles or MPI halos will be refreshed.
-  void sync(Particles<D>&) const {}
+  // Between passes: the ghosts read what the pass wrote for their sources
+  // (every allocated field; later: only the pass's declared outputs, and
+  // the MPI halos).
+  void sync(Particles<D>& P) const { P.refreshGhosts(); }
 
   unsigned runPasses(const std::vector<Pass<D>>& passes, Particles<D>& P, const NeighbourList<D>& neighbours,
                      StepContext ctx) const {

@@ -28,8 +28,7 @@ template <int D>
 unsigned ColourFieldPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
   std::visit(
       [&](const auto& k) {
-        neighbours.withSeparation(
-            [&](const auto& sep) { computeColourField(P, neighbours, k, method, minNormal, twoPhase, sep); });
+        computeColourField(P, neighbours, k, method, minNormal, twoPhase);
       },
       kernel);
   return term_bits::kColourField;

@@ -46,14 +46,14 @@ namespace sph {
 constexpr Real kCspmMinEigenvalue = 0.2;
 
 // M_i of fluid particle i.
-// M_i with r_ij = sep(x_i, x_j) (the minimum image along periodic axes).
-template <int D, class K, class Sep = FreeSpace>
+// M_i with r_ij = x_i - x_j (a neighbour across a periodic face is a ghost).
+template <int D, class K>
 inline Mat<D> cspmMoment(std::size_t i, const Particles<D>& P, const NeighbourList<D>& neighbours, const K& kernel,
-                         bool wallsInSums, const Sep& sep = {}) {
+                         bool wallsInSums) {
   Mat<D> M = Mat<D>::Zero();
   const Vec<D> xi = P.x[i];
   auto add = [&](std::uint32_t j) {
-    const Vec<D> rij = sep(xi, P.x[j]);
+    const Vec<D> rij = xi - P.x[j];
     const Real r = rij.norm();
     if (!(r > 0)) return;
     // (x_j - x_i) (x) grad_i W_ij = -(W'/r) rij rij^T
@@ -88,10 +88,10 @@ unsigned CspmCorrectionPass<D>::run(Particles<D>& P, const NeighbourList<D>& nei
   long fallbacks = 0;
   std::visit(
       [&](const auto& k) {
-        neighbours.withSeparation([&](const auto& sep) {
+        {
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
           for (std::size_t i = 0; i < n; ++i) {
-            const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(i, P, neighbours, k, wallsInSums, sep));
+            const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(i, P, neighbours, k, wallsInSums));
             if (L) {
               P.cspmL[i] = *L;
             } else {
@@ -99,7 +99,7 @@ unsigned CspmCorrectionPass<D>::run(Particles<D>& P, const NeighbourList<D>& nei
               ++fallbacks;
             }
           }
-        });
+        }
       },
       kernel);
   if (ctx.counts) {

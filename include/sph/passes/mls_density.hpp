@@ -40,11 +40,10 @@ namespace sph {
 constexpr Real kMlsMinRcond = 1e-3;
 
 // The MLS density of fluid particle i, or nothing when A_i is singular.
-// r_ij = sep(x_i, x_j): x_i - x_j, or its minimum image along periodic axes
-// (NeighbourList::withSeparation chooses it once per pass).
-template <int D, class K, class Sep = FreeSpace>
+// r_ij = x_i - x_j (a neighbour across a periodic face is a ghost).
+template <int D, class K>
 inline std::optional<Real> mlsDensity(std::size_t i, const Particles<D>& P, const NeighbourList<D>& neighbours,
-                                      const K& kernel, bool wallsInSums, const Sep& sep = {}) {
+                                      const K& kernel, bool wallsInSums) {
   using Vp = Eigen::Matrix<Real, D + 1, 1>;
   using Mp = Eigen::Matrix<Real, D + 1, D + 1>;
   const Real invH = 1 / kernel.h();
@@ -53,7 +52,7 @@ inline std::optional<Real> mlsDensity(std::size_t i, const Particles<D>& P, cons
   const Real W0 = kernel.W(0);
   A(0, 0) = P.m[i] / P.rho[i] * W0;
   auto moment = [&](std::uint32_t j) {
-    const Vec<D> rij = sep(xi, P.x[j]);
+    const Vec<D> rij = xi - P.x[j];
     Vp p;
     p[0] = 1;
     p.template tail<D>() = rij * invH;
@@ -71,7 +70,7 @@ inline std::optional<Real> mlsDensity(std::size_t i, const Particles<D>& P, cons
   const Vp beta = ldlt.solve(Vp::Unit(0));
   Real rho = P.m[i] * beta[0] * W0;
   auto add = [&](std::uint32_t j) {
-    const Vec<D> rij = sep(xi, P.x[j]);
+    const Vec<D> rij = xi - P.x[j];
     rho += P.m[j] * (beta[0] + beta.template tail<D>().dot(rij * invH)) * kernel.W(rij.norm());
   };
   if (wallsInSums) neighbours.forEach(i, add);
@@ -98,18 +97,18 @@ unsigned MlsDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   long fallbacks = 0;
   std::visit(
       [&](const auto& k) {
-        neighbours.withSeparation([&](const auto& sep) {
+        {
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
           for (std::size_t i = 0; i < n; ++i) {
-            const std::optional<Real> rho = mlsDensity(i, P, neighbours, k, wallsInSums, sep);
+            const std::optional<Real> rho = mlsDensity(i, P, neighbours, k, wallsInSums);
             if (rho) {
               P.rhoReinit[i] = *rho;
             } else {
-              P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums, sep);
+              P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums);
               ++fallbacks;
             }
           }
-        });
+        }
       },
       kernel);
   applyReinitialisedDensity(P, eos, clampNegative);

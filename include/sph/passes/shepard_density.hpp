@@ -41,16 +41,15 @@ namespace sph {
 inline bool reinitDue(const StepContext& ctx, long every) { return every > 0 && ctx.step > 0 && ctx.step % every == 0; }
 
 // The Shepard density of fluid particle i: sum m_j W_ij / sum V_j W_ij.
-// r_ij = sep(x_i, x_j): x_i - x_j, or its minimum image along periodic axes
-// (NeighbourList::withSeparation chooses it once per pass).
-template <int D, class K, class Sep = FreeSpace>
+// r_ij = x_i - x_j (a neighbour across a periodic face is a ghost).
+template <int D, class K>
 inline Real shepardDensity(std::size_t i, const Particles<D>& P, const NeighbourList<D>& neighbours, const K& kernel,
-                           bool wallsInSums, const Sep& sep = {}) {
+                           bool wallsInSums) {
   const Real W0 = kernel.W(0);
   Real sumMW = P.m[i] * W0, sumVW = P.m[i] / P.rho[i] * W0;
   const Vec<D> xi = P.x[i];
   auto add = [&](std::uint32_t j) {
-    const Real W = kernel.W(Vec<D>(sep(xi, P.x[j])).norm());
+    const Real W = kernel.W(Vec<D>(xi - P.x[j]).norm());
     sumMW += P.m[j] * W;
     sumVW += P.m[j] / P.rho[j] * W;
   };
@@ -85,10 +84,10 @@ unsigned ShepardDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& nei
   const std::size_t n = P.fluidCount();
   std::visit(
       [&](const auto& k) {
-        neighbours.withSeparation([&](const auto& sep) {
+        {
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-          for (std::size_t i = 0; i < n; ++i) P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums, sep);
-        });
+          for (std::size_t i = 0; i < n; ++i) P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums);
+        }
       },
       kernel);
   applyReinitialisedDensity(P, eos, clampNegative);

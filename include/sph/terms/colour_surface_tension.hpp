@@ -106,10 +106,10 @@ enum class CurvatureMethod { kMuller, kMorris, kCorrected };
 // sum carries noise of order 0.1/h at 10% disorder. At a free surface (no
 // colour region: chi = 1 everywhere) the plain sums are the only ones that
 // see the surface, so they are used there (and kCorrected is kMorris there).
-// r_ij = sep(x_i, x_j): the minimum image along periodic axes.
-template <int D, class Kernel, class Sep = FreeSpace>
+// r_ij = x_i - x_j (a neighbour across a periodic face is a ghost).
+template <int D, class Kernel>
 void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel,
-                        CurvatureMethod method, Real minNormal, bool twoPhase, const Sep& sep = {}) {
+                        CurvatureMethod method, Real minNormal, bool twoPhase) {
   const ColourKernel<Kernel> W{kernel};
   const std::size_t n = P.fluidCount();
   const Real lap0 = W.laplacian(0), W0 = W.W(0);
@@ -129,7 +129,7 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
           [&](std::uint32_t j) {
             const Real dchi = P.colour[j] - base;
             if (dchi == 0 && !corrected) return;
-            const Vec<D> rij = sep(xi, P.x[j]);
+            const Vec<D> rij = xi - P.x[j];
             const Real r = rij.norm();
             const Real Vj = P.m[j] / P.rho[j];
             const Real g = W.dWdr_r(r);
@@ -146,8 +146,9 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
     }
     // Morris (and corrected): the divergence of the unit normal, over the
     // particles that have a reliable one (the loop above has finished: omp
-    // for's barrier).
+    // for's barrier), the ghosts' normals copied from their sources.
     if (!muller) {
+      P.refreshGhostsInTeam(fieldBit(kFieldColourNormal));
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
         const Real ni = P.colourNormal[i].norm();
@@ -163,7 +164,7 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
             [&](std::uint32_t j) {
               const Real nj = P.colourNormal[j].norm();
               if (!(nj > minNormal)) return;
-              const Vec<D> rij = sep(xi, P.x[j]);
+              const Vec<D> rij = xi - P.x[j];
               const Real r = rij.norm();
               const Real Vj = P.m[j] / P.rho[j];
               const Real g = W.dWdr_r(r);
@@ -182,6 +183,7 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
       // mean of their reliable neighbours' kappa, so that the force acts on
       // the whole of the colour gradient.
       if (corrected) {
+        P.refreshGhostsInTeam(fieldBit(kFieldCurvature));
 #pragma omp for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
           const Real ni = P.colourNormal[i].norm();
@@ -192,7 +194,7 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
               i,
               [&](std::uint32_t j) {
                 if (!(P.colourNormal[j].norm() > minNormal)) return;
-                const Real w = P.m[j] / P.rho[j] * W.W(sep(xi, P.x[j]).norm());
+                const Real w = P.m[j] / P.rho[j] * W.W(Vec<D>(xi - P.x[j]).norm());
                 sum += w * P.curvature[j];
                 weight += w;
               },

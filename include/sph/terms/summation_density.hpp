@@ -18,21 +18,21 @@ namespace sph {
 template <int D, class Kernel, class Eos>
 void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& W,
                              const Eos& eos, bool wallsInSums = true, bool clampNegative = false) {
-  neighbours.withSeparation([&](const auto& sep) {
+  {
     const std::size_t n = P.fluidCount();
     const bool withSoundSpeed = !P.c.empty();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) {
       Real rho_i = P.m[i] * W.densityAtZero();
       auto add = [&](std::uint32_t j, const Vec<D>& rij) { rho_i += P.m[j] * W.density(rij.squaredNorm()); };
-      if (wallsInSums) forEachNeighbourSeparation(P, neighbours, i, sep, add);
-      else forEachNeighbourSeparationByKind(P, neighbours, i, sep, add, [](std::uint32_t, const Vec<D>&) {});
+      if (wallsInSums) forEachNeighbourSeparation(P, neighbours, i, add);
+      else forEachNeighbourSeparationByKind(P, neighbours, i, add, [](std::uint32_t, const Vec<D>&) {});
       P.rho[i] = rho_i;
       const Real p = eos.pressure(rho_i);
       P.p[i] = clampNegative ? std::max(p, Real(0)) : p;
       if (withSoundSpeed) P.c[i] = eos.soundSpeed(rho_i);
     }
-  });
+  }
 }
 
 }  // namespace sph

@@ -1,0 +1,110 @@
+// PeriodicGhosts<D>: periodic boundaries by ghost particles, as DualSPHysics
+// does with its periodic particles (Dominguez et al. 2022, "DualSPHysics:
+// from fluid dynamics to multiphysics problems", Comp. Part. Mech. 9).
+//
+// At every sort the owned particles are wrapped into the box [lo, hi) along
+// the periodic axes (periodic_box.hpp); then every owned particle (fluid or
+// wall) within one support `layer` of a periodic face is copied, shifted by
+// the box length, to beyond the opposite face:
+//   x_ghost = x_i + s,  s_a in {0, +L_a (x_i,a - lo_a < layer),
+//                                  -L_a (hi_a - x_i,a < layer)}
+// for every combination of the axes' shifts but s = 0, so a particle near
+// an edge or a corner gets the combined shifts too (up to 3 ghosts in 2D,
+// 7 in 3D). The ghosts are appended to the particles as their ghost range
+// (particles.hpp: ghosts of fluid, then of walls), so the grid and the
+// neighbour list see them as ordinary particles and every pass forms the
+// plain r_ij = x_i - x_j. With L_a >= 2 x support (validateCase refuses
+// narrower periodic boxes) a pair closer than the support is seen through
+// exactly one of j and its ghosts, as the minimum image would see it.
+//
+// The layer is the support itself (times 1 + 1e-9, as the grid's cell, so
+// that rounding in x_i - (x_j - L) against the minimum image (x_i - x_j) + L
+// never loses a pair at the edge of the support; an extra ghost costs only
+// a distance test). Ghosts compute nothing: the model's sync() between
+// passes and the scene between stages refresh them from their sources
+// (Particles::refreshGhosts).
+#pragma once
+
+#include "sph/hash_grid.hpp"
+#include "sph/neighbour_list.hpp"
+#include "sph/particles.hpp"
+#include "sph/periodic_box.hpp"
+
+#include <vector>
+
+namespace sph {
+
+template <int D>
+class PeriodicGhosts {
+ public:
+  PeriodicGhosts() = default;
+  PeriodicGhosts(const PeriodicBox<D>& box, Real support) : box_(box), layer_(support * (1 + 1e-9)) {}
+
+  const PeriodicBox<D>& box() const { return box_; }
+  Real layer() const { return layer_; }
+
+  // Drop the old ghosts, wrap the owned particles into the box and append
+  // the ghosts of their current positions.
+  void make(Particles<D>& P) {
+    P.clearGhosts();
+    const std::size_t n = P.size(), nFluid = P.fluidCount();
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
+    for (std::size_t i = 0; i < n; ++i) box_.wrap(P.x[i]);
+    source_.clear();
+    shift_.clear();
+    std::size_t fluidGhosts = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      addImages(P.x[i], static_cast<std::uint32_t>(i));
+      if (i + 1 == nFluid) fluidGhosts = source_.size();
+    }
+    if (nFluid == n) fluidGhosts = source_.size();
+    P.addGhosts(source_, shift_, fluidGhosts);
+  }
+
+ private:
+  // The ghosts of one particle: every combination of the axes' shifts but none.
+  void addImages(const Vec<D>& x, std::uint32_t i) {
+    Real options[D][3];
+    int count[D];
+    int combinations = 1;
+    for (int a = 0; a < D; ++a) {
+      count[a] = 0;
+      options[a][count[a]++] = 0;
+      if (box_.periodic(a)) {
+        const Real L = box_.length[a], lo = box_.lo[a];
+        if (x[a] - lo < layer_) options[a][count[a]++] = L;
+        if (lo + L - x[a] < layer_) options[a][count[a]++] = -L;
+      }
+      combinations *= count[a];
+    }
+    for (int k = 1; k < combinations; ++k) {
+      Vec<D> s;
+      int rest = k;
+      for (int a = 0; a < D; ++a) {
+        s[a] = options[a][rest % count[a]];
+        rest /= count[a];
+      }
+      source_.push_back(i);
+      shift_.push_back(s);
+    }
+  }
+
+  PeriodicBox<D> box_;
+  Real layer_ = 0;
+  std::vector<std::uint32_t> source_;  // reused: no allocation once grown
+  std::vector<Vec<D>> shift_;
+};
+
+// Sort the owned particles by cell, with the ghosts of a periodic box
+// (ghosts == nullptr: none), and build the neighbour list of the sorted
+// particles: the one sort every scene and test goes through.
+template <int D>
+void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours, Real support,
+                PeriodicGhosts<D>* ghosts = nullptr) {
+  if (ghosts) ghosts->make(P);
+  grid.build(P.x, P.fluidCount(), P.size(), P.ghostFluidEnd());
+  P.permute(grid.order());
+  neighbours.build(grid, P.x, support, P.fluidCount(), P.size());
+}
+
+}  // namespace sph
