@@ -2,6 +2,7 @@
 
 #include "sph/case_keys.hpp"
 #include "sph/io/number_format.hpp"
+#include "sph/methods.hpp"
 
 #include <cmath>
 #include <initializer_list>
@@ -57,7 +58,7 @@ void validateCase(const CaseConfig& c) {
   if (c.isGiven("output_interval") && !(c.outputInterval > 0))
     throw CaseError("output_interval = " + significant(c.outputInterval) + " is out of range: it must be > 0 (seconds of simulated time)");
   checkKeyRanges(c);  // every key against its own range and choices (case_keys.cpp)
-  const bool seed = c.model == "seed_wcsph";
+  const bool seed = !composedModel(c);
   if (seed) {
     for (const auto& [key, value] : {std::pair<const char*, const std::string&>{"kernel", c.kernel},
                                      {"eos", c.eos}, {"viscosity", c.viscosity}})
@@ -146,8 +147,7 @@ int requestedThreads(const CaseConfig& c) {
   return static_cast<int>(n);
 }
 
-std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& given) {
-  const CaseConfig c = withDefaults(given);
+std::vector<std::pair<std::string, std::string>> unusedKeys(const ResolvedCase& c) {
   std::vector<std::pair<std::string, std::string>> unused;
   auto note = [&](const char* key, const std::string& why) { unused.emplace_back(key, why); };
   // Keys a method owns are used when that method is chosen.
@@ -160,7 +160,7 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
     note(key, std::string(category) + " is " + (chosen.empty() ? "none" : chosen) + "; it applies to " +
                   category + " " + list);
   };
-  const bool seed = c.model == "seed_wcsph";
+  const bool seed = !composedModel(c);
   if (seed) {
     for (const char* key : {"gamma", "c0", "polytropic_index", "alpha", "beta", "nu", "background_pressure"})
       note(key, "model seed_wcsph has its own fixed terms; it applies to model wcsph");
@@ -182,7 +182,7 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
                             "colour_ellipse_radii"})
       note(key, "surface_tension is none; it applies to surface_tension morris, muller or corrected");
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
-  if (!c.walls || c.boundary == "reflecting")
+  if (!wallParticles(c))
     note("wall_guard", "the walls are not particles; it applies to boundary dummy, dynamic or repulsive");
   if (!c.gravity.empty()) note("g", "gravity gives the body acceleration");
   if (c.starMass == 0)
@@ -208,21 +208,23 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
   return unused;
 }
 
-std::vector<std::string> unusedKeyNotes(const CaseConfig& c) {
+std::vector<std::string> unusedKeyNotes(const ResolvedCase& c) {
   std::vector<std::string> notes;
   for (const auto& [key, why] : unusedKeys(c))
     if (c.isGiven(key)) notes.push_back("key '" + key + "' is not used: " + why);
   return notes;
 }
 
-CaseConfig withDefaults(CaseConfig c) {
-  if (c.integrator.empty()) c.integrator = "leap_frog";
-  if (c.model == "wcsph") {
-    if (c.kernel.empty()) c.kernel = "cubic_spline";
-    if (c.eos.empty()) c.eos = "linear";
-    if (c.viscosity.empty()) c.viscosity = "laplacian";
+ResolvedCase withDefaults(CaseConfig c) {
+  if (c.integrator.empty()) c.integrator = kDefaultIntegrator;
+  if (composedModel(c)) {
+    if (c.kernel.empty()) c.kernel = kDefaultKernel;
+    if (c.eos.empty()) c.eos = kDefaultEos;
+    if (c.viscosity.empty()) c.viscosity = kDefaultViscosity;
   }
-  return c;
+  return ResolvedCase(std::move(c));
 }
+
+ResolvedCase::ResolvedCase() : ResolvedCase(withDefaults(CaseConfig{})) {}
 
 }  // namespace sph

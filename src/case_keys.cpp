@@ -137,7 +137,7 @@ const std::vector<KeySpec>& caseKeys() {
       {"k", G::kPhysics, &C::k, "m^2/s^2 (linear EOS)",
        "EOS stiffness: p = k (rho - rho0) (linear, seed), or p = k rho^(1+1/n) (polytropic)", above(0, 1e15),
        nullptr, nullptr},
-      {"eos", G::kPhysics, &C::eos, "", "Equation of state (model wcsph)", {}, "linear", eosNames},
+      {"eos", G::kPhysics, &C::eos, "", "Equation of state (model wcsph)", {}, kDefaultEos, eosNames},
       {"c0", G::kPhysics, &C::c0, "m/s", "Tait sound speed (eos tait; usually 10x the largest flow speed)",
        within(0, 1e6), "none", nullptr},
       {"background_pressure", G::kPhysics, &C::backgroundPressure, "Pa",
@@ -147,8 +147,8 @@ const std::vector<KeySpec>& caseKeys() {
       {"gamma", G::kPhysics, &C::gamma, "", "Tait exponent (eos tait)", above(0, 20), nullptr, nullptr},
       {"polytropic_index", G::kPhysics, &C::polytropicIndex, "", "n in p = k rho^(1 + 1/n) (eos polytropic)",
        above(0, 100), nullptr, nullptr},
-      {"kernel", G::kPhysics, &C::kernel, "", "Kernel (model wcsph)", {}, "cubic_spline", kernelNames},
-      {"viscosity", G::kPhysics, &C::viscosity, "", "Viscosity (model wcsph)", {}, "laplacian", viscosityNames},
+      {"kernel", G::kPhysics, &C::kernel, "", "Kernel (model wcsph)", {}, kDefaultKernel, kernelNames},
+      {"viscosity", G::kPhysics, &C::viscosity, "", "Viscosity (model wcsph)", {}, kDefaultViscosity, viscosityNames},
       {"mu", G::kPhysics, &C::mu, "Pa s (3D), kg/s (2D)",
        "Dynamic viscosity (seed model, viscosity laplacian; 0 switches it off)", within(0, 1e10), nullptr, nullptr},
       {"nu", G::kPhysics, &C::nu, "m^2/s",
@@ -250,7 +250,7 @@ const std::vector<KeySpec>& caseKeys() {
       {"colour_ellipse_radii", G::kScene, &C::colourEllipseRadii, "m",
        "Semi-axes of the colour ellipse along x, y[, z] (equal: a circle or sphere)", within(0, 1e9), "none", nullptr},
       // Numerics
-      {"integrator", G::kNumerics, &C::integrator, "", "Time integrator", {}, "leap_frog", integratorNames},
+      {"integrator", G::kNumerics, &C::integrator, "", "Time integrator", {}, kDefaultIntegrator, integratorNames},
       {"dt", G::kNumerics, &C::dt, "s", "Time step (with cfl > 0: the largest step)", above(0, 1e9), nullptr,
        nullptr},
       {"cfl", G::kNumerics, &C::cfl, "", "Adaptive dt with this CFL factor (model wcsph; 0: fixed dt)",
@@ -458,7 +458,7 @@ std::string resumeKeysText() {
   return text;
 }
 
-std::string resolvedCaseText(const CaseConfig& c) {
+std::string resolvedCaseText(const ResolvedCase& c) {
   std::string text =
       "# The case as this run resolved it: every key with the value used (defaults\n"
       "# filled in, command-line flags applied; keys nothing reads are comments).\n"

@@ -73,7 +73,7 @@ bool isResumeKey(const std::string& name);
 std::string resumeKeysText();  // "end_time, output_every, ... and progress", for messages
 
 // A case file holding every key with its value in c, by topic.
-std::string resolvedCaseText(const CaseConfig& c);
+std::string resolvedCaseText(const ResolvedCase& c);
 
 // The key reference, docs/keys.md (src/key_reference.cpp): every key as
 // Markdown tables by topic, with unit, default, allowed values and help.

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "sph/case_config.hpp"
+#include "sph/method_defaults.hpp"
 #include "sph/integrators/integrators.hpp"
 #include "sph/kernels/kernels.hpp"
 #include "sph/models/wcsph.hpp"
@@ -165,20 +166,56 @@ inline const std::vector<Method<bool>>& gradientCorrectionMethods() {
   return m;
 }
 
+// A model is composed (kernel, eos, viscosity and the other choices by name)
+// or a fixed scheme (the seed's own kernels, EOS and forces).
 struct ModelRow {
   const char* name;
   const char* summary;
   std::vector<const char*> keys;
+  bool composed;
 };
 inline const std::vector<ModelRow>& modelMethods() {
   static const std::vector<ModelRow> m = {
       {"seed_wcsph", "the seed 2D weakly-compressible scheme exactly as written (its kernels, linear EOS, forces)",
-       {"h", "k", "rho0", "mu", "g"}},
+       {"h", "k", "rho0", "mu", "g"}, false},
       {"wcsph", "weakly-compressible SPH composed from kernel, eos, viscosity, body forces and XSPH",
-       {"h", "rho0", "g", "kernel", "eos", "viscosity", "xsph", "damping", "integrator", "cfl"}},
+       {"h", "rho0", "g", "kernel", "eos", "viscosity", "xsph", "damping", "integrator", "cfl"}, true},
   };
   return m;
 }
+
+// The row called `name` of a table whose key names it (checkKeyRanges has
+// refused unknown names), or a CaseError naming the key.
+template <class Table>
+const typename Table::value_type& methodRow(const Table& table, const char* key, const std::string& name) {
+  for (const auto& row : table)
+    if (name == row.name) return row;
+  throw CaseError(std::string(key) + " = \"" + name + "\" is not known");
+}
+
+// The case's model row, and whether it is composed from named methods.
+inline const ModelRow& modelOf(const CaseConfig& c) { return methodRow(modelMethods(), "model", c.model); }
+inline bool composedModel(const CaseConfig& c) { return modelOf(c).composed; }
+
+// The kernel a (raw or resolved) case uses under a composed model: its own
+// or the default.
+template <int D>
+Kernel<D> chosenKernel(const CaseConfig& c) {
+  return methodRow(kernelMethods<D>(), "kernel", c.kernel.empty() ? kDefaultKernel : c.kernel).make(c);
+}
+
+// How the walls act (boundary key, whether or not the box has walls), and
+// whether the case has wall particles (walls on, a particle boundary).
+inline WallTreatment wallTreatment(const CaseConfig& c) {
+  return methodRow(boundaryMethods(), "boundary", c.boundary).make(c);
+}
+inline bool wallParticles(const CaseConfig& c) { return c.walls && wallTreatment(c) != WallTreatment::kNoParticles; }
+
+// How the density is found (density key).
+inline DensityTreatment densityTreatment(const CaseConfig& c) {
+  return methodRow(densityMethods(), "density", c.density).make(c);
+}
+inline bool continuityDensity(const CaseConfig& c) { return densityTreatment(c) == DensityTreatment::kContinuity; }
 
 // The names of a table, in order.
 template <class Table>
