@@ -68,10 +68,11 @@ void validateCase(const CaseConfig& c) {
     if (c.xsph != 0 || c.damping != 0 || c.starMass != 0 || c.cfl != 0)
       throw CaseError("xsph, damping, star_* and cfl need model = \"wcsph\"; model seed_wcsph "
                       "is the seed scheme exactly");
-    if (!c.integrator.empty() && c.integrator != "leap_frog")
-      throw CaseError("integrator = \"" + c.integrator + "\": model seed_wcsph uses leap_frog only");
+    const char* only = modelOf(c).onlyIntegrator;
+    if (only && !c.integrator.empty() && c.integrator != only)
+      throw CaseError("integrator = \"" + c.integrator + "\": model seed_wcsph uses " + only + " only");
   }
-  if (c.eos == "tait") requirePositive("c0", c.c0);
+  validateChosenMethods(c);  // each chosen method's own rules (methods.hpp)
   validateWallsAndDensity(c);
   validateTension(c);
   validateProbes(c);
@@ -105,7 +106,8 @@ void validateCase(const CaseConfig& c) {
     if (!c.starVelocity.empty() && c.starVelocity.size() != stars * static_cast<std::size_t>(D))
       throw CaseError("star_velocity has " + std::to_string(c.starVelocity.size()) + " values: it needs " +
                       std::to_string(stars * static_cast<std::size_t>(D)) + " (D per star)");
-    if (c.eos != "polytropic") throw CaseError("a toy star needs eos = \"polytropic\"");
+    if (!std::holds_alternative<PolytropicEos>(chosenEos(c).make(c)))
+      throw CaseError("a toy star needs eos = \"polytropic\"");
     if (!c.blockMin.empty() || !c.discCenter.empty() || !c.points.empty())
       throw CaseError("star_* generators cannot be combined with block, disc or points (their masses differ)");
   }
@@ -150,29 +152,8 @@ int requestedThreads(const CaseConfig& c) {
 std::vector<std::pair<std::string, std::string>> unusedKeys(const ResolvedCase& c) {
   std::vector<std::pair<std::string, std::string>> unused;
   auto note = [&](const char* key, const std::string& why) { unused.emplace_back(key, why); };
-  // Keys a method owns are used when that method is chosen.
-  auto owned = [&](const char* key, const std::vector<std::string>& owners, const std::string& chosen,
-                   const char* category) {
-    for (const auto& o : owners)
-      if (o == chosen) return;
-    std::string list;
-    for (const auto& o : owners) list += (list.empty() ? "" : " or ") + o;
-    note(key, std::string(category) + " is " + (chosen.empty() ? "none" : chosen) + "; it applies to " +
-                  category + " " + list);
-  };
   const bool seed = !composedModel(c);
-  if (seed) {
-    for (const char* key : {"gamma", "c0", "polytropic_index", "alpha", "beta", "nu", "background_pressure"})
-      note(key, "model seed_wcsph has its own fixed terms; it applies to model wcsph");
-  } else {
-    for (const char* key : {"gamma", "c0"}) owned(key, {"tait"}, c.eos, "eos");
-    owned("polytropic_index", {"polytropic"}, c.eos, "eos");
-    owned("background_pressure", {"linear", "tait"}, c.eos, "eos");
-    if (c.eos == "tait") note("k", "eos tait uses c0 and gamma");
-    for (const char* key : {"alpha", "beta"}) owned(key, {"monaghan"}, c.viscosity, "viscosity");
-    owned("nu", {"morris"}, c.viscosity, "viscosity");
-    if (c.viscosity != "laplacian") note("mu", "viscosity is " + c.viscosity + "; it applies to viscosity laplacian");
-  }
+  noteUnusedMethodKeys(c, note);  // the keys of eos and viscosity (methods.hpp)
   if (c.densityReinit == "none")
     note("density_reinit_every", "density_reinit is none; it applies to density_reinit shepard or mls");
   if (seed || c.artificialPressure == 0)

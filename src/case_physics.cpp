@@ -83,7 +83,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
   if (c.densityReinit != "none" && density != DensityTreatment::kContinuity)
     throw CaseError("density_reinit = \"" + c.densityReinit + "\" needs density = \"continuity\" (summation "
                     "density is recomputed from the positions at every step)");
-  if (c.backgroundPressure != 0 && (seed || (!c.eos.empty() && c.eos != "linear" && c.eos != "tait")))
+  if (c.backgroundPressure != 0 && (seed || !readsKey(chosenEos(c), "background_pressure")))
     throw CaseError("background_pressure = " + significant(c.backgroundPressure) +
                     " needs model = \"wcsph\" with eos = \"linear\" or \"tait\"");
   if (c.shifting != "none" && (seed || !(c.spacing > 0)))

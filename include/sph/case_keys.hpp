@@ -30,6 +30,18 @@ struct KeyRange {
   bool contains(double x) const;
 };
 
+// Ranges by their ends (case_keys.cpp and the method parameters of
+// methods.hpp): open and closed ends, integers.
+namespace key_range {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+inline KeyRange above(double lo, double hi = kInf) { return {lo, hi, true, false, false}; }
+inline KeyRange within(double lo, double hi) { return {lo, hi, false, false, false}; }
+inline KeyRange count(double lo, double hi) { return {lo, hi, false, false, true}; }
+// Coordinates and lengths: large enough for any scene, small enough that
+// every product the program forms stays finite.
+inline KeyRange coordinate() { return within(-1e9, 1e9); }
+}  // namespace key_range
+
 using KeyField = std::variant<Real CaseConfig::*, long CaseConfig::*, int CaseConfig::*, bool CaseConfig::*,
                               std::string CaseConfig::*, std::vector<Real> CaseConfig::*,
                               std::vector<long> CaseConfig::*>;
