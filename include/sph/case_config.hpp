@@ -79,7 +79,6 @@ struct CaseConfig {
   Real backgroundPressure = 0;  // p_b added by eos linear and tait
   Real alpha = 1, beta = 2; // Monaghan artificial viscosity
   Real nu = 1e-6;           // kinematic viscosity (viscosity morris)
-  Real zeta = 0;            // pair drag rate (viscosity linear_drag)
   Real xsph = 0;            // XSPH epsilon (0: off)
   Real damping = 0;         // nu in a = -nu v (0: off)
   Real artificialPressure = 0;   // Monaghan 2000 artificial pressure epsilon (0: off)

@@ -150,9 +150,6 @@ inline const std::vector<Method<ViscosityChoice>>& viscosityMethods() {
        },
        {{"nu", KeyGroup::kPhysics, &CaseConfig::nu, "m^2/s",
        "Kinematic viscosity (viscosity morris; 0 switches it off; water 1e-6)", within(0, 1e6), nullptr, nullptr}}},
-      {"linear_drag", "a_i = -zeta sum_j V_j W_ij (v_i - v_j) (scratch)", {"zeta"},
-       [](const CaseConfig& c) -> ViscosityChoice { return LinearDragViscosityChoice{c.zeta}; },
-       {{"zeta", KeyGroup::kPhysics, &CaseConfig::zeta, "1/s", "Pair drag rate (viscosity linear_drag)", within(0, 1e6), nullptr, nullptr}}},
       {"none", "no viscosity", {}, [](const CaseConfig&) -> ViscosityChoice { return NoViscosity{}; }},
   };
   return m;

@@ -34,7 +34,6 @@
 #include "sph/terms/laplacian_viscosity.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
 #include "sph/terms/morris_viscosity.hpp"
-#include "sph/terms/linear_drag_viscosity.hpp"
 #include "sph/terms/symmetric_pressure.hpp"
 #include "sph/terms/xsph.hpp"
 
@@ -54,11 +53,8 @@ struct MonaghanViscosityChoice {
 struct MorrisViscosityChoice {
   Real nu;
 };
-struct LinearDragViscosityChoice {
-  Real zeta;
-};
-using ViscosityChoice = std::variant<NoViscosity, LaplacianViscosityChoice, MonaghanViscosityChoice,
-                                     MorrisViscosityChoice, LinearDragViscosityChoice>;
+using ViscosityChoice =
+    std::variant<NoViscosity, LaplacianViscosityChoice, MonaghanViscosityChoice, MorrisViscosityChoice>;
 
 // The pair evaluator of a viscosity choice for kernel K (none: an empty
 // pack); kWall: for wall neighbours (their vWall), `on` = false: coefficient 0.
@@ -75,11 +71,6 @@ inline std::tuple<MonaghanViscosity<K, kWall>> viscosityPack(const K& k, Monagha
 template <class K, bool kWall>
 inline std::tuple<MorrisViscosity<K, kWall>> viscosityPack(const K& k, MorrisViscosityChoice v, bool on = true) {
   return {MorrisViscosity<K, kWall>{k, on ? v.nu : 0}};
-}
-
-template <class K, bool kWall>
-inline std::tuple<LinearDragViscosity<K, kWall>> viscosityPack(const K& k, LinearDragViscosityChoice v, bool on = true) {
-  return {LinearDragViscosity<K, kWall>{k, on ? v.zeta : 0}};
 }
 
 template <int D>

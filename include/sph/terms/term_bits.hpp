@@ -31,7 +31,6 @@ enum : unsigned {
   kArtificialPressure = 1u << 21,
   kColourField = 1u << 22,
   kSurfaceTension = 1u << 23,
-  kLinearDragViscosity = 1u << 24,
 };
 
 }  // namespace sph::term_bits
