@@ -160,7 +160,7 @@ void runScenario(const Scenario& sc, const std::vector<double>& threads, int ste
     std::size_t n = 0;
     for (int r = 0; r < repeats; ++r) {
       sph::validateCase(sc.c);
-      const CaseConfig c = sph::withDefaults(sc.c);
+      const sph::ResolvedCase c = sph::withDefaults(sc.c);
       auto init = sph::buildInitialState<D>(c);
       const bool scale = !init.massesGiven;
       n = init.particles.size();

@@ -40,7 +40,7 @@ std::string fmt(Real x, int digits = 3) { return significant(x, digits); }
 
 template <int D>
 int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
-  CaseConfig c;
+  ResolvedCase c;
   InitialState<D> init;
   try {
     validateCase(given);
@@ -161,12 +161,12 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   if (c.integrator == "euler") warn("integrator euler (explicit Euler) gains energy every step whatever dt: use leap_frog");
 
   // Walls and kernels.
-  if (c.walls && (c.boundary == "dummy" || c.boundary == "dynamic")) {
+  if (c.walls && (wallTreatment(c) == WallTreatment::kDummy || wallTreatment(c) == WallTreatment::kDynamic)) {
     const int needed = wallLayersNeeded(c), layers = wallLayersUsed(c);
     out << "  wall layers      " << layers << " (the support needs " << needed << ")\n";
     if (layers < needed) warn("fewer wall layers than the support needs: particles near a wall see a gap and leak");
   }
-  if (c.walls && c.boundary != "reflecting") {
+  if (wallParticles(c)) {
     if (c.wallGuard)
       out << "  wall guard       on: no fluid particle crosses a wall surface (the wall forces alone do not hold an "
              "isolated splash particle: boundaries/wall_guard.hpp)\n";
@@ -174,7 +174,7 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       warn("wall_guard = false: the wall particles alone hold the fluid; an isolated splash particle at p <= 0 can "
            "pass them and stop the run (measured: the obstacle dam break at 0.33 s)");
   }
-  if (dx > 0 && c.model == "wcsph" && c.kernel == "cubic_spline" && h / dx >= 1.3)
+  if (dx > 0 && composedModel(c) && c.kernel == "cubic_spline" && h / dx >= 1.3)
     warn("cubic spline at h/dx " + fmt(h / dx) + ": it pairs particles from h/dx 1.3 (measured: 39% paired at 1.3, " +
          "52-70% from 1.5); wendland_c2 stays clean to 2.0");
 

@@ -2,6 +2,7 @@
 
 #include "sph/case_keys.hpp"
 #include "sph/io/number_format.hpp"
+#include "sph/methods.hpp"
 
 #include <cmath>
 #include <initializer_list>
@@ -57,7 +58,7 @@ void validateCase(const CaseConfig& c) {
   if (c.isGiven("output_interval") && !(c.outputInterval > 0))
     throw CaseError("output_interval = " + significant(c.outputInterval) + " is out of range: it must be > 0 (seconds of simulated time)");
   checkKeyRanges(c);  // every key against its own range and choices (case_keys.cpp)
-  const bool seed = c.model == "seed_wcsph";
+  const bool seed = !composedModel(c);
   if (seed) {
     for (const auto& [key, value] : {std::pair<const char*, const std::string&>{"kernel", c.kernel},
                                      {"eos", c.eos}, {"viscosity", c.viscosity}})
@@ -67,10 +68,11 @@ void validateCase(const CaseConfig& c) {
     if (c.xsph != 0 || c.damping != 0 || c.starMass != 0 || c.cfl != 0)
       throw CaseError("xsph, damping, star_* and cfl need model = \"wcsph\"; model seed_wcsph "
                       "is the seed scheme exactly");
-    if (!c.integrator.empty() && c.integrator != "leap_frog")
-      throw CaseError("integrator = \"" + c.integrator + "\": model seed_wcsph uses leap_frog only");
+    const char* only = modelOf(c).onlyIntegrator;
+    if (only && !c.integrator.empty() && c.integrator != only)
+      throw CaseError("integrator = \"" + c.integrator + "\": model seed_wcsph uses " + only + " only");
   }
-  if (c.eos == "tait") requirePositive("c0", c.c0);
+  validateChosenMethods(c);  // each chosen method's own rules (methods.hpp)
   validateWallsAndDensity(c);
   validateTension(c);
   validateProbes(c);
@@ -104,7 +106,8 @@ void validateCase(const CaseConfig& c) {
     if (!c.starVelocity.empty() && c.starVelocity.size() != stars * static_cast<std::size_t>(D))
       throw CaseError("star_velocity has " + std::to_string(c.starVelocity.size()) + " values: it needs " +
                       std::to_string(stars * static_cast<std::size_t>(D)) + " (D per star)");
-    if (c.eos != "polytropic") throw CaseError("a toy star needs eos = \"polytropic\"");
+    if (!std::holds_alternative<PolytropicEos>(chosenEos(c).make(c)))
+      throw CaseError("a toy star needs eos = \"polytropic\"");
     if (!c.blockMin.empty() || !c.discCenter.empty() || !c.points.empty())
       throw CaseError("star_* generators cannot be combined with block, disc or points (their masses differ)");
   }
@@ -146,33 +149,11 @@ int requestedThreads(const CaseConfig& c) {
   return static_cast<int>(n);
 }
 
-std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& given) {
-  const CaseConfig c = withDefaults(given);
+std::vector<std::pair<std::string, std::string>> unusedKeys(const ResolvedCase& c) {
   std::vector<std::pair<std::string, std::string>> unused;
   auto note = [&](const char* key, const std::string& why) { unused.emplace_back(key, why); };
-  // Keys a method owns are used when that method is chosen.
-  auto owned = [&](const char* key, const std::vector<std::string>& owners, const std::string& chosen,
-                   const char* category) {
-    for (const auto& o : owners)
-      if (o == chosen) return;
-    std::string list;
-    for (const auto& o : owners) list += (list.empty() ? "" : " or ") + o;
-    note(key, std::string(category) + " is " + (chosen.empty() ? "none" : chosen) + "; it applies to " +
-                  category + " " + list);
-  };
-  const bool seed = c.model == "seed_wcsph";
-  if (seed) {
-    for (const char* key : {"gamma", "c0", "polytropic_index", "alpha", "beta", "nu", "background_pressure"})
-      note(key, "model seed_wcsph has its own fixed terms; it applies to model wcsph");
-  } else {
-    for (const char* key : {"gamma", "c0"}) owned(key, {"tait"}, c.eos, "eos");
-    owned("polytropic_index", {"polytropic"}, c.eos, "eos");
-    owned("background_pressure", {"linear", "tait"}, c.eos, "eos");
-    if (c.eos == "tait") note("k", "eos tait uses c0 and gamma");
-    for (const char* key : {"alpha", "beta"}) owned(key, {"monaghan"}, c.viscosity, "viscosity");
-    owned("nu", {"morris"}, c.viscosity, "viscosity");
-    if (c.viscosity != "laplacian") note("mu", "viscosity is " + c.viscosity + "; it applies to viscosity laplacian");
-  }
+  const bool seed = !composedModel(c);
+  noteUnusedMethodKeys(c, note);  // the keys of eos and viscosity (methods.hpp)
   if (c.densityReinit == "none")
     note("density_reinit_every", "density_reinit is none; it applies to density_reinit shepard or mls");
   if (seed || c.artificialPressure == 0)
@@ -182,7 +163,7 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
                             "colour_ellipse_radii"})
       note(key, "surface_tension is none; it applies to surface_tension morris, muller or corrected");
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
-  if (!c.walls || c.boundary == "reflecting")
+  if (!wallParticles(c))
     note("wall_guard", "the walls are not particles; it applies to boundary dummy, dynamic or repulsive");
   if (!c.gravity.empty()) note("g", "gravity gives the body acceleration");
   if (c.starMass == 0)
@@ -208,21 +189,23 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& gi
   return unused;
 }
 
-std::vector<std::string> unusedKeyNotes(const CaseConfig& c) {
+std::vector<std::string> unusedKeyNotes(const ResolvedCase& c) {
   std::vector<std::string> notes;
   for (const auto& [key, why] : unusedKeys(c))
     if (c.isGiven(key)) notes.push_back("key '" + key + "' is not used: " + why);
   return notes;
 }
 
-CaseConfig withDefaults(CaseConfig c) {
-  if (c.integrator.empty()) c.integrator = "leap_frog";
-  if (c.model == "wcsph") {
-    if (c.kernel.empty()) c.kernel = "cubic_spline";
-    if (c.eos.empty()) c.eos = "linear";
-    if (c.viscosity.empty()) c.viscosity = "laplacian";
+ResolvedCase withDefaults(CaseConfig c) {
+  if (c.integrator.empty()) c.integrator = kDefaultIntegrator;
+  if (composedModel(c)) {
+    if (c.kernel.empty()) c.kernel = kDefaultKernel;
+    if (c.eos.empty()) c.eos = kDefaultEos;
+    if (c.viscosity.empty()) c.viscosity = kDefaultViscosity;
   }
-  return c;
+  return ResolvedCase(std::move(c));
 }
+
+ResolvedCase::ResolvedCase() : ResolvedCase(withDefaults(CaseConfig{})) {}
 
 }  // namespace sph

@@ -12,15 +12,7 @@
 namespace sph {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Ranges: open and closed ends.
-KeyRange above(double lo, double hi = kInf) { return {lo, hi, true, false, false}; }
-KeyRange within(double lo, double hi) { return {lo, hi, false, false, false}; }
-KeyRange count(double lo, double hi) { return {lo, hi, false, false, true}; }
-// Coordinates and lengths: large enough for any scene, small enough that
-// every product the program forms stays finite.
-KeyRange coordinate() { return within(-1e9, 1e9); }
+using namespace key_range;
 
 std::vector<std::string> kernelNames() { return methodNames(kernelMethods<2>()); }
 std::vector<std::string> eosNames() { return methodNames(eosMethods()); }
@@ -39,6 +31,16 @@ std::vector<std::string> regimeCheckNames() { return {"stop", "warn", "off"}; }
 std::vector<std::string> probeInterpolationNames() { return {"shepard", "plain"}; }
 std::vector<std::string> shiftingNames() { return {"none", "fickian"}; }
 std::vector<std::string> initialFlowNames() { return {"none", "taylor_green"}; }
+
+// The keys the methods of `table` declare, in table order, into `rows`
+// after the row of `chooser`.
+template <class Table>
+void insertMethodParameters(std::vector<KeySpec>& rows, const char* chooser, const Table& table) {
+  auto at = std::find_if(rows.begin(), rows.end(), [&](const KeySpec& k) { return std::string(k.name) == chooser; });
+  if (at != rows.end()) ++at;
+  for (const auto& method : table)
+    for (const KeySpec& key : method.params) at = rows.insert(at, key) + 1;
+}
 
 }  // namespace
 
@@ -74,7 +76,8 @@ bool KeyRange::contains(double x) const {
 const std::vector<KeySpec>& caseKeys() {
   using G = KeyGroup;
   using C = CaseConfig;
-  static const std::vector<KeySpec> keys = {
+  static const std::vector<KeySpec> keys = [] {
+    std::vector<KeySpec> rows = {
       // Scene
       {"model", G::kScene, &C::model, "", "Physics model", {}, nullptr, modelNames},
       {"dimension", G::kScene, &C::dimension, "", "Spatial dimension", count(2, 3), nullptr, nullptr},
@@ -134,29 +137,9 @@ const std::vector<KeySpec>& caseKeys() {
        "3h (Gaussian), h (Mueller)",
        within(1e-9, 1e9), nullptr, nullptr},
       {"rho0", G::kPhysics, &C::rho0, "kg/m^3 (3D), kg/m^2 (2D)", "Rest density", above(0, 1e10), nullptr, nullptr},
-      {"k", G::kPhysics, &C::k, "m^2/s^2 (linear EOS)",
-       "EOS stiffness: p = k (rho - rho0) (linear, seed), or p = k rho^(1+1/n) (polytropic)", above(0, 1e15),
-       nullptr, nullptr},
-      {"eos", G::kPhysics, &C::eos, "", "Equation of state (model wcsph)", {}, "linear", eosNames},
-      {"c0", G::kPhysics, &C::c0, "m/s", "Tait sound speed (eos tait; usually 10x the largest flow speed)",
-       within(0, 1e6), "none", nullptr},
-      {"background_pressure", G::kPhysics, &C::backgroundPressure, "Pa",
-       "Background pressure p_b added to p (eos linear and tait; for flows without a free surface, e.g. a periodic "
-       "box: keeps p > 0 against the tensile instability)",
-       within(0, 1e12), nullptr, nullptr},
-      {"gamma", G::kPhysics, &C::gamma, "", "Tait exponent (eos tait)", above(0, 20), nullptr, nullptr},
-      {"polytropic_index", G::kPhysics, &C::polytropicIndex, "", "n in p = k rho^(1 + 1/n) (eos polytropic)",
-       above(0, 100), nullptr, nullptr},
-      {"kernel", G::kPhysics, &C::kernel, "", "Kernel (model wcsph)", {}, "cubic_spline", kernelNames},
-      {"viscosity", G::kPhysics, &C::viscosity, "", "Viscosity (model wcsph)", {}, "laplacian", viscosityNames},
-      {"mu", G::kPhysics, &C::mu, "Pa s (3D), kg/s (2D)",
-       "Dynamic viscosity (seed model, viscosity laplacian; 0 switches it off)", within(0, 1e10), nullptr, nullptr},
-      {"nu", G::kPhysics, &C::nu, "m^2/s",
-       "Kinematic viscosity (viscosity morris; 0 switches it off; water 1e-6)", within(0, 1e6), nullptr, nullptr},
-      {"alpha", G::kPhysics, &C::alpha, "", "Monaghan viscosity alpha (viscosity monaghan)", within(0, 100),
-       nullptr, nullptr},
-      {"beta", G::kPhysics, &C::beta, "", "Monaghan viscosity beta (viscosity monaghan)", within(0, 100), nullptr,
-       nullptr},
+      {"eos", G::kPhysics, &C::eos, "", "Equation of state (model wcsph)", {}, kDefaultEos, eosNames},
+      {"kernel", G::kPhysics, &C::kernel, "", "Kernel (model wcsph)", {}, kDefaultKernel, kernelNames},
+      {"viscosity", G::kPhysics, &C::viscosity, "", "Viscosity (model wcsph)", {}, kDefaultViscosity, viscosityNames},
       {"g", G::kPhysics, &C::g, "m/s^2",
        "Gravity magnitude, pointing along -y in 2D and -z in 3D: shorthand for gravity = [0, -g] or [0, 0, -g] "
        "(0 switches it off; not with gravity)",
@@ -250,7 +233,7 @@ const std::vector<KeySpec>& caseKeys() {
       {"colour_ellipse_radii", G::kScene, &C::colourEllipseRadii, "m",
        "Semi-axes of the colour ellipse along x, y[, z] (equal: a circle or sphere)", within(0, 1e9), "none", nullptr},
       // Numerics
-      {"integrator", G::kNumerics, &C::integrator, "", "Time integrator", {}, "leap_frog", integratorNames},
+      {"integrator", G::kNumerics, &C::integrator, "", "Time integrator", {}, kDefaultIntegrator, integratorNames},
       {"dt", G::kNumerics, &C::dt, "s", "Time step (with cfl > 0: the largest step)", above(0, 1e9), nullptr,
        nullptr},
       {"cfl", G::kNumerics, &C::cfl, "", "Adaptive dt with this CFL factor (model wcsph; 0: fixed dt)",
@@ -331,6 +314,11 @@ const std::vector<KeySpec>& caseKeys() {
        "only)",
        count(1, 1e12), nullptr, nullptr},
   };
+    // The parameters of the methods (methods.hpp), after the key that chooses them.
+    insertMethodParameters(rows, "eos", eosMethods());
+    insertMethodParameters(rows, "viscosity", viscosityMethods());
+    return rows;
+  }();
   return keys;
 }
 
@@ -458,7 +446,7 @@ std::string resumeKeysText() {
   return text;
 }
 
-std::string resolvedCaseText(const CaseConfig& c) {
+std::string resolvedCaseText(const ResolvedCase& c) {
   std::string text =
       "# The case as this run resolved it: every key with the value used (defaults\n"
       "# filled in, command-line flags applied; keys nothing reads are comments).\n"

@@ -16,9 +16,8 @@ namespace {
 // The largest interaction distance of the case's model: the seed's h, or
 // the kernel's support.
 Real interactionRadius(const CaseConfig& c) {
-  if (c.model == "seed_wcsph") return c.h;
-  const auto* row = findMethod(kernelMethods<2>(), c.kernel.empty() ? "cubic_spline" : c.kernel);
-  return row ? std::visit([](const auto& k) { return k.support(); }, row->make(c)) : c.h;
+  if (!composedModel(c)) return c.h;
+  return std::visit([](const auto& k) { return k.support(); }, chosenKernel<2>(c));
 }
 
 // periodic: letters of distinct axes of the case's dimension; each periodic
@@ -37,7 +36,7 @@ void validatePeriodic(const CaseConfig& c) {
     seen |= 1u << a;
   }
   const Real support = interactionRadius(c);
-  const bool particleWalls = c.walls && c.boundary != "reflecting";
+  const bool particleWalls = wallParticles(c);
   for (std::size_t a = 0; a < axes.size() && a < c.domainMin.size() && a < c.domainMax.size(); ++a) {
     if (!((seen >> a) & 1u)) continue;
     const Real L = c.domainMax[a] - c.domainMin[a];
@@ -67,23 +66,24 @@ unsigned periodicAxes(const CaseConfig& c) {
 
 void validateWallsAndDensity(const CaseConfig& c) {
   validatePeriodic(c);
-  const bool seed = c.model == "seed_wcsph";
-  const bool particleWalls = c.walls && c.boundary != "reflecting";
+  const bool seed = !composedModel(c);
+  const bool particleWalls = wallParticles(c);
+  const DensityTreatment density = densityTreatment(c);
   if (seed) {
-    if (c.boundary != "reflecting")
+    if (wallTreatment(c) != WallTreatment::kNoParticles)
       throw CaseError("boundary = \"" + c.boundary + "\": model seed_wcsph has the seed's reflecting walls only; "
                       "use model = \"wcsph\"");
-    if (c.density != "summation" || c.hydrostaticStart || c.negativePressure != "none" || !c.obstacleMin.empty())
+    if (density != DensityTreatment::kSummation || c.hydrostaticStart || c.negativePressure != "none" || !c.obstacleMin.empty())
       throw CaseError("density, hydrostatic_start, negative_pressure and obstacles need model = \"wcsph\"; "
                       "model seed_wcsph is the seed scheme exactly");
   }
   if (seed && (c.densityReinit != "none" || c.gradientCorrection != "none"))
     throw CaseError("density_reinit and gradient_correction need model = \"wcsph\"; model seed_wcsph is the seed "
                     "scheme exactly");
-  if (c.densityReinit != "none" && c.density != "continuity")
+  if (c.densityReinit != "none" && density != DensityTreatment::kContinuity)
     throw CaseError("density_reinit = \"" + c.densityReinit + "\" needs density = \"continuity\" (summation "
                     "density is recomputed from the positions at every step)");
-  if (c.backgroundPressure != 0 && (seed || (!c.eos.empty() && c.eos != "linear" && c.eos != "tait")))
+  if (c.backgroundPressure != 0 && (seed || !readsKey(chosenEos(c), "background_pressure")))
     throw CaseError("background_pressure = " + significant(c.backgroundPressure) +
                     " needs model = \"wcsph\" with eos = \"linear\" or \"tait\"");
   if (c.shifting != "none" && (seed || !(c.spacing > 0)))
@@ -98,10 +98,10 @@ void validateWallsAndDensity(const CaseConfig& c) {
       throw CaseError("initial_flow = \"taylor_green\" needs a square domain: domain_max - domain_min is " + significant(Lx) +
                       " x " + significant(Ly) + " m");
   }
-  if (c.boundary == "dynamic" && c.density != "continuity")
+  if (wallTreatment(c) == WallTreatment::kDynamic && density != DensityTreatment::kContinuity)
     throw CaseError("boundary = \"dynamic\" needs density = \"continuity\" (dynamic wall particles carry a "
                     "density by the continuity equation)");
-  if (c.delta > 0 && c.density != "continuity")
+  if (c.delta > 0 && density != DensityTreatment::kContinuity)
     throw CaseError("delta = " + std::to_string(c.delta) + " needs density = \"continuity\" (density diffusion "
                     "acts on the continuity equation)");
   if ((particleWalls || !c.obstacleMin.empty()) && !(c.spacing > 0))
@@ -141,7 +141,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
     if (c.lidVelocity.size() != D)
       throw CaseError("lid_velocity has " + std::to_string(c.lidVelocity.size()) + " values: it needs " +
                       std::to_string(D) + " (one per dimension)");
-    if (!(c.lid && c.walls && c.boundary == "dummy"))
+    if (!(c.lid && c.walls && wallTreatment(c) == WallTreatment::kDummy))
       throw CaseError("lid_velocity needs a lid of dummy wall particles: lid = true, boundary = \"dummy\"");
     if (c.lidVelocity[D - 1] != 0)
       throw CaseError("lid_velocity = [..., " + significant(c.lidVelocity[D - 1]) +
@@ -151,7 +151,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
   if (c.hydrostaticStart && c.blockMax.empty() && c.discRadius.empty())
     throw CaseError("hydrostatic_start needs a fluid block or disc (block_min/block_max, disc_center/disc_radius): "
                     "the top of each body is the free surface its hydrostatic pressure starts from");
-  if (particleWalls && c.boundary != "repulsive") {
+  if (particleWalls && wallTreatment(c) != WallTreatment::kRepulsive) {
     const int needed = wallLayersNeeded(c);
     if (c.wallLayers > 0 && c.wallLayers < needed && !c.wallLayersOverride)
       throw CaseError("wall_layers = " + std::to_string(c.wallLayers) + " is too few: the kernel support (" +
@@ -162,7 +162,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
 }
 
 void validateTension(const CaseConfig& c) {
-  const bool seed = c.model == "seed_wcsph";
+  const bool seed = !composedModel(c);
   if (seed && (c.artificialPressure != 0 || c.surfaceTension != "none"))
     throw CaseError("artificial_pressure and surface_tension need model = \"wcsph\"; model seed_wcsph is the seed "
                     "scheme exactly");

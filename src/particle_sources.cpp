@@ -266,9 +266,8 @@ void addFile(InitialState<D>& s, FromFile<D>& file, const CaseConfig& c) {
 // decaying as exp(-2 nu k^2 t) (velocity). The density is the EOS inverse of
 // p and the mass rho dx^D, so every particle keeps its lattice volume.
 template <int D>
-void addTaylorGreenFlow(Particles<D>& P, const CaseConfig& c) {
-  const CaseConfig resolved = withDefaults(c);
-  const EquationOfState eos = findMethod(eosMethods(), resolved.eos)->make(resolved);
+void addTaylorGreenFlow(Particles<D>& P, const ResolvedCase& c) {
+  const EquationOfState eos = methodRow(eosMethods(), "eos", c.eos).make(c);
   const Real U = c.flowSpeed, L = c.domainMax[0] - c.domainMin[0], k = 2 * std::acos(Real(-1)) / L;
   for (std::size_t i = 0; i < P.fluidCount(); ++i) {
     const Real x = P.x[i][0] - c.domainMin[0], y = P.x[i][1] - c.domainMin[1];
@@ -281,7 +280,7 @@ void addTaylorGreenFlow(Particles<D>& P, const CaseConfig& c) {
 }
 
 template <int D>
-InitialState<D> buildInitialState(const CaseConfig& c) {
+InitialState<D> buildInitialState(const ResolvedCase& c) {
   InitialState<D> s;
   Particles<D>& P = s.particles;
   const Vec<D> v0 = c.velocity.empty() ? Vec<D>::Zero() : toVec<D>(c.velocity);
@@ -310,7 +309,7 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
                         " (obstacle_min/obstacle_max): fluid particle " + std::to_string(i) + " lies inside it");
     }
   const std::size_t nFluid = P.x.size();
-  const bool wcsph = c.model == "wcsph";
+  const bool wcsph = composedModel(c);
   // wcsph: masses from the lattice, m = rho0 dx^D (the seed scales them to
   // a mean density of rho0, as the seed says).
   if (wcsph && c.spacing > 0 && !s.massesGiven) {
@@ -319,12 +318,12 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
   }
   // Wall particles, after the fluid: a particle file's own (a snapshot's
   // walls carry their density, which dynamic walls integrate), else the case's.
-  const bool wallParticles = wcsph && c.walls && c.boundary != "reflecting";
+  const bool particleWalls = wcsph && wallParticles(c);
   const Real mWall = c.rho0 * std::pow(c.spacing, D);
   if (!file.walls.x.empty()) {
     const std::string where = "particle_file " + c.particleFile + " holds " + std::to_string(file.walls.x.size()) +
                               " wall particles (kind = 1)";
-    if (!wallParticles)
+    if (!particleWalls)
       throw CaseError(where + ", but the case has none (they need model = wcsph, walls = true and boundary = "
                       "dummy, dynamic or repulsive)");
     const std::size_t made = wallParticlePositions<D>(c, wallLayersUsed(c)).size();
@@ -335,7 +334,7 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
       addParticle<D>(P, file.walls.x[i], file.walls.v[i], file.walls.m[i] > 0 ? file.walls.m[i] : mWall);
       P.id.back() = file.walls.id[i];
     }
-  } else if (wallParticles) {
+  } else if (particleWalls) {
     const int layers = wallLayersUsed(c);
     // A sliding lid: the wall particles above the box carry its velocity
     // u_w, which the wall terms see (dummy_adami2012.hpp); none moves.
@@ -376,11 +375,10 @@ InitialState<D> buildInitialState(const CaseConfig& c) {
     }
   }
   if (wcsph && c.hydrostaticStart && !densitiesGiven) {
-    const CaseConfig resolved = withDefaults(c);
-    const EquationOfState eos = findMethod(eosMethods(), resolved.eos)->make(resolved);
+    const EquationOfState eos = methodRow(eosMethods(), "eos", c.eos).make(c);
     // Wall particles take the highest body's surface.
     const Real top = s.surface.empty() ? 0 : *std::max_element(s.surface.begin(), s.surface.end());
-    const bool dummyWalls = c.boundary == "dummy";
+    const bool dummyWalls = wallTreatment(c) == WallTreatment::kDummy;
     for (std::size_t i = 0; i < P.size(); ++i) {
       const Real H = i < s.surface.size() ? s.surface[i] : (i < nFluid ? P.x[i][D - 1] : top);
       const Real p = std::max(Real(0), c.rho0 * -gravityVector<D>(c)[D - 1] * (H - P.x[i][D - 1]));
@@ -443,7 +441,7 @@ InitialState<D> resumeState(const std::string& snapshot) {
 
 template InitialState<2> resumeState<2>(const std::string&);
 template InitialState<3> resumeState<3>(const std::string&);
-template InitialState<2> buildInitialState<2>(const CaseConfig&);
-template InitialState<3> buildInitialState<3>(const CaseConfig&);
+template InitialState<2> buildInitialState<2>(const ResolvedCase&);
+template InitialState<3> buildInitialState<3>(const ResolvedCase&);
 
 }  // namespace sph

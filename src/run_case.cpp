@@ -27,7 +27,7 @@ template <int D>
 int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   std::optional<RunStart<D>> start = startRun<D>(given, err);
   if (!start) return kBadInput;
-  const CaseConfig& c = start->c;
+  const ResolvedCase& c = start->c;
   const bool resuming = start->resuming;
   InitialState<D>& init = start->init;
 

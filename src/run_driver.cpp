@@ -122,7 +122,7 @@ void offerToCatalyst(std::unique_ptr<Catalyst>& catalyst, const Scene<D>& scene,
 }  // namespace
 
 template <int D>
-RunTotals driveRun(const CaseConfig& c, Scene<D>& scene, RunOutput<D>& output, RunReport& report,
+RunTotals driveRun(const ResolvedCase& c, Scene<D>& scene, RunOutput<D>& output, RunReport& report,
                    ThreadTuner& tuner, std::unique_ptr<Catalyst>& catalyst, const SnapshotInfo& info,
                    Real startTime, Real resumeTime, bool resuming, std::ostream& err) {
   const std::filesystem::path dir(c.output);
@@ -268,9 +268,9 @@ RunTotals driveRun(const CaseConfig& c, Scene<D>& scene, RunOutput<D>& output, R
   return totals;
 }
 
-template RunTotals driveRun<2>(const CaseConfig&, Scene<2>&, RunOutput<2>&, RunReport&, ThreadTuner&,
+template RunTotals driveRun<2>(const ResolvedCase&, Scene<2>&, RunOutput<2>&, RunReport&, ThreadTuner&,
                                std::unique_ptr<Catalyst>&, const SnapshotInfo&, Real, Real, bool, std::ostream&);
-template RunTotals driveRun<3>(const CaseConfig&, Scene<3>&, RunOutput<3>&, RunReport&, ThreadTuner&,
+template RunTotals driveRun<3>(const ResolvedCase&, Scene<3>&, RunOutput<3>&, RunReport&, ThreadTuner&,
                                std::unique_ptr<Catalyst>&, const SnapshotInfo&, Real, Real, bool, std::ostream&);
 
 }  // namespace sph

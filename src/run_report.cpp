@@ -25,7 +25,7 @@ namespace {
 // What the run record says about the case: every key's value and the keys
 // set. A resume changes only the keys it may (case_keys.hpp) and keeps the
 // command line that started the run (its own goes to resumed_at).
-void describeCase(RunRecord& r, const CaseConfig& c, bool resuming) {
+void describeCase(RunRecord& r, const ResolvedCase& c, bool resuming) {
   for (const KeySpec& k : caseKeys())
     if (!isRunOnlyKey(k) && (!resuming || isResumeKey(k.name))) r.caseValues[k.name] = keyValueText(c, k);
   r.given.assign(c.given.begin(), c.given.end());
@@ -94,7 +94,7 @@ long TimeStepStats::steps() const {
   return n;
 }
 
-RunReport::RunReport(const std::filesystem::path& dir, const CaseConfig& c, const RunRecord& previous,
+RunReport::RunReport(const std::filesystem::path& dir, const ResolvedCase& c, const RunRecord& previous,
                      bool resuming, long resumeStep, Real resumeTime, Real startTime, std::size_t n,
                      std::size_t fluid)
     : dir_(dir), record_(resuming ? previous : RunRecord{}), previous_(previous), resuming_(resuming) {
@@ -142,7 +142,7 @@ void RunReport::save(Real time, long step, long wallGuardActions, const ThreadTu
 }
 
 template <int D>
-void RunReport::finish(const Scene<D>& scene, const CaseConfig& c, const RunTotals& totals,
+void RunReport::finish(const Scene<D>& scene, const ResolvedCase& c, const RunTotals& totals,
                        const ThreadTuner& tuner, bool autoThreads, Real resumeTime, const RunOutput<D>& output,
                        std::ostream& out, std::ostream& err) {
   RunRecord& record = record_;
@@ -223,9 +223,9 @@ void RunReport::finish(const Scene<D>& scene, const CaseConfig& c, const RunTota
         << "\n";
 }
 
-template void RunReport::finish<2>(const Scene<2>&, const CaseConfig&, const RunTotals&, const ThreadTuner&, bool,
+template void RunReport::finish<2>(const Scene<2>&, const ResolvedCase&, const RunTotals&, const ThreadTuner&, bool,
                                    Real, const RunOutput<2>&, std::ostream&, std::ostream&);
-template void RunReport::finish<3>(const Scene<3>&, const CaseConfig&, const RunTotals&, const ThreadTuner&, bool,
+template void RunReport::finish<3>(const Scene<3>&, const ResolvedCase&, const RunTotals&, const ThreadTuner&, bool,
                                    Real, const RunOutput<3>&, std::ostream&, std::ostream&);
 
 }  // namespace sph

@@ -17,7 +17,7 @@ template <int D>
 std::optional<RunStart<D>> startRun(const CaseConfig& given, std::ostream& err) {
   RunStart<D> s;
   s.resuming = !given.resume.empty();
-  CaseConfig& c = s.c;
+  ResolvedCase& c = s.c;
   try {
     validateCase(given);
     c = withDefaults(given);

@@ -59,15 +59,14 @@ void addShell(std::vector<Vec<D>>& out, const AxisLattice (&axes)[D]) {
 
 int wallLayersNeeded(const CaseConfig& c) {
   if (c.spacing <= 0) return 0;
-  const Real support = std::visit([](const auto& k) { return k.support(); },
-                                  findMethod(kernelMethods<2>(), c.kernel.empty() ? "cubic_spline" : c.kernel)->make(c));
+  const Real support = std::visit([](const auto& k) { return k.support(); }, chosenKernel<2>(c));
   return static_cast<int>(std::ceil(support / c.spacing - 1e-9));
 }
 
 template <int D>
 std::vector<Vec<D>> wallParticlePositions(const CaseConfig& c, int layers) {
   std::vector<Vec<D>> out;
-  const bool repulsive = c.boundary == "repulsive";
+  const bool repulsive = wallTreatment(c) == WallTreatment::kRepulsive;
   const Real dx = c.spacing;
   {
     // No walls on periodic faces: along a periodic axis the lattice is the

@@ -201,7 +201,7 @@ BOOST_AUTO_TEST_CASE(csv_particle_file_is_read) {
   }
   CaseConfig c;
   c.particleFile = (dir / "p.csv").string();
-  const auto s = buildInitialState<2>(c);
+  const auto s = buildInitialState<2>(withDefaults(c));
   BOOST_TEST_REQUIRE(s.particles.size() == 2u);
   BOOST_TEST(s.particles.x[1][1] == 0.3);
   BOOST_TEST(s.particles.v[1][1] == -1.0);

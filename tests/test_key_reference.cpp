@@ -3,11 +3,13 @@
 // it (src/main.cpp). These tests fail when either drifts from the table:
 // a key added, renamed, given another range, default or help text.
 #include "sph/case_keys.hpp"
+#include "sph/methods.hpp"
 #include "test_support.hpp"
 
 #include <boost/test/unit_test.hpp>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
 BOOST_AUTO_TEST_SUITE(key_reference)
@@ -63,6 +65,36 @@ BOOST_AUTO_TEST_CASE(run_help_lists_every_key_with_its_help) {
     const std::string help = std::string(k.help).substr(0, 20);
     BOOST_TEST(r.output.find(help) != std::string::npos, "sph run --help lacks the help of " << k.name);
   }
+}
+
+// Each key is declared once: in the key table or by one method of the
+// registry (methods.hpp), whose keys the table splices in after the key that
+// chooses the method; a method reads the keys it declares, and the
+// unused-key notes of those keys come from the same declaration.
+BOOST_AUTO_TEST_CASE(every_key_is_declared_once_by_the_table_or_a_method) {
+  std::map<std::string, int> seen;
+  for (const sph::KeySpec& k : sph::caseKeys()) ++seen[k.name];
+  for (const auto& [name, n] : seen) BOOST_TEST(n == 1, name << " is declared " << n << " times");
+  const auto declared = [](const auto& table) {
+    for (const auto& method : table)
+      for (const sph::KeySpec& k : method.params) {
+        BOOST_TEST(sph::findKey(k.name) != nullptr, k.name << " (" << method.name << ") is not in the key table");
+        BOOST_TEST(sph::readsKey(method, k.name), method.name << " declares " << k.name << " but does not read it");
+      }
+  };
+  declared(sph::eosMethods());
+  declared(sph::viscosityMethods());
+  // The notes name the chosen method and the methods that read the key.
+  sph::CaseConfig c = sph::test::bareWcsph(2);
+  c.viscosity = "morris";
+  c.eos = "tait";
+  c.c0 = 10;
+  c.given = {"alpha", "polytropic_index", "nu", "c0"};
+  const std::vector<std::string> notes = sph::unusedKeyNotes(sph::withDefaults(c));
+  const std::vector<std::string> expected = {
+      "key 'polytropic_index' is not used: eos is tait; it applies to eos polytropic",
+      "key 'alpha' is not used: viscosity is morris; it applies to viscosity monaghan"};
+  BOOST_TEST(notes == expected, boost::test_tools::per_element());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

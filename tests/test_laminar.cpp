@@ -47,7 +47,7 @@ CaseConfig shearLattice() {
 template <class U>
 std::vector<std::pair<Real, Real>> interiorAcceleration(const CaseConfig& c, U u) {
   validateCase(c);
-  const CaseConfig cd = withDefaults(c);
+  const ResolvedCase cd = withDefaults(c);
   InitialState<2> init = buildInitialState<2>(cd);
   for (std::size_t i = 0; i < init.particles.x.size(); ++i) init.particles.v[i] = Vec<2>(u(init.particles.x[i][1]), 0);
   const bool scale = !init.massesGiven;

@@ -13,7 +13,7 @@ BOOST_AUTO_TEST_CASE(mean_density_equals_rho0_for_a_block) {
   c.blockMin = {0.01, 0.01};
   c.blockMax = {0.26, 0.51};
   c.spacing = 0.0075;
-  auto init = buildInitialState<2>(c);
+  auto init = buildInitialState<2>(withDefaults(c));
   const std::size_t n = init.particles.size();
   BOOST_TEST(n == 33u * 67u);  // round(0.25/0.0075) x round(0.5/0.0075)
   SeedWcsphParameters prm;
@@ -35,7 +35,7 @@ BOOST_AUTO_TEST_CASE(mean_density_equals_rho0_for_a_disc_and_in_3d) {
   c.discCenter = {0.2, 0.5};
   c.discRadius = {0.1};
   c.spacing = 0.0075;
-  auto disc = buildInitialState<2>(c);
+  auto disc = buildInitialState<2>(withDefaults(c));
   SeedWcsphParameters prm;
   prm.rho0 = 998.2;
   auto s2 = test::makeScene<2>(disc.particles.x, {}, prm, true, 1e-4);
@@ -48,7 +48,7 @@ BOOST_AUTO_TEST_CASE(mean_density_equals_rho0_for_a_disc_and_in_3d) {
   c.domainMax = {1, 1, 1};
   c.discCenter = {0.5, 0.5, 0.5};
   c.discRadius = {0.05};
-  auto ball = buildInitialState<3>(c);
+  auto ball = buildInitialState<3>(withDefaults(c));
   auto s3 = test::makeScene<3>(ball.particles.x, {}, prm, true, 1e-4);
   sum = 0;
   for (Real rho : s3.particles().rho) sum += rho;

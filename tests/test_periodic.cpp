@@ -361,7 +361,7 @@ BOOST_AUTO_TEST_CASE(momentum_kept_in_a_periodic_box) {
       BOOST_TEST(wrapped > 0u, "no particle crossed a periodic face");
     };
     validateCase(c);
-    const CaseConfig cd = withDefaults(c);
+    const ResolvedCase cd = withDefaults(c);
     if (D == 2) {
       auto init = buildInitialState<2>(cd);
       const bool scale = !init.massesGiven;

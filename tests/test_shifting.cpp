@@ -63,7 +63,7 @@ Real kernelSumSpread(const Scene<2>& s, Real h) {
 // spacing (seeded); a periodic box wraps them as the scene sorts them.
 Scene<2> jitteredScene(const CaseConfig& c, Real fraction, unsigned seed) {
   validateCase(c);
-  const CaseConfig cd = withDefaults(c);
+  const ResolvedCase cd = withDefaults(c);
   InitialState<2> init = buildInitialState<2>(cd);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<Real> u(-fraction * c.spacing, fraction * c.spacing);

@@ -127,7 +127,7 @@ inline CaseConfig bareWcsph(int dimension) {
 template <int D>
 Scene<D> sceneOf(const CaseConfig& given) {
   validateCase(given);
-  const CaseConfig c = withDefaults(given);
+  const ResolvedCase c = withDefaults(given);
   InitialState<D> init = buildInitialState<D>(c);
   const bool scale = !init.massesGiven;
   Scene<D> s = makeScene<D>(c, std::move(init));

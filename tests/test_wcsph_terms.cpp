@@ -54,8 +54,8 @@ Scene<D> twoParticles(const std::string& kernel, Real r, Real h, Real rho0, Real
   P.resize(2);
   CaseConfig c = test::bareWcsph(D);
   c.kernel = kernel, c.h = h, c.rho0 = rho0, c.k = k, c.viscosity = viscosity, c.mu = 0.5;
-  c = withDefaults(c);
-  Scene<D> s(std::move(P), makeModel<D>(c), std::nullopt,
+  const ResolvedCase resolved = withDefaults(c);
+  Scene<D> s(std::move(P), makeModel<D>(resolved), std::nullopt,
              StateCheck<D>{Vec<D>::Constant(-100), Vec<D>::Constant(100)}, TimeStepControl{1e-3}, 0,
              makeIntegrator<D>("leap_frog"));
   BOOST_REQUIRE(!s.initialise(false));

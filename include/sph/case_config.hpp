@@ -8,6 +8,7 @@
 // allowed.
 #pragma once
 
+#include "sph/method_defaults.hpp"
 #include "sph/types.hpp"
 
 #include <set>
@@ -27,7 +28,7 @@ struct CaseConfig {
   std::string caseFile;  // path of the case file ("" when none)
   std::string name = "sph";  // run name: output files are <name>.pvd, <name>_NNNNN.vtp
   std::string output;    // output folder
-  std::string model = "seed_wcsph";
+  std::string model = kDefaultModel;
   int dimension = 2;
 
   // physics shared by the models
@@ -42,7 +43,7 @@ struct CaseConfig {
   std::string periodic;     // periodic axes of the domain box: "x", "xy", "xz", ... ("" or "none": none)
 
   // walls and density (model wcsph)
-  std::string boundary = "reflecting";  // reflecting | dummy | dynamic | repulsive
+  std::string boundary = kDefaultBoundary;  // reflecting | dummy | dynamic | repulsive
   long wallLayers = 0;                  // layers of wall particles (0: as many as the support needs)
   bool wallLayersOverride = false;      // allow fewer layers than the support needs
   bool lid = false;                     // wall particles on the top of the box too
@@ -53,7 +54,7 @@ struct CaseConfig {
   long paddle = 0;                      // the obstacle (1-based) that moves as a paddle; 0: none
   std::vector<Real> paddleAmplitude;    // its displacement A sin(2 pi t / T), D values
   Real paddlePeriod = 1;                // T [s]
-  std::string density = "summation";    // summation | continuity
+  std::string density = kDefaultDensity;    // summation | continuity
   Real delta = 0;                       // delta-SPH coefficient (0: off)
   std::string diffusion = "fourtakas";  // fourtakas | molteni
   bool hydrostaticStart = false;        // start at rest in hydrostatic balance
@@ -174,12 +175,29 @@ void validateProbes(const CaseConfig& c);
 // The thread count a validated `threads` key asks for (0: auto).
 int requestedThreads(const CaseConfig& c);
 
+// A case with the model-dependent defaults filled in ("" choices get the
+// registry's default method, methods.hpp): what builds the particles, the
+// model and the scene. Only withDefaults makes one from a raw case, once,
+// after validateCase; applying the defaults again does not compile.
+class ResolvedCase : public CaseConfig {
+ public:
+  ResolvedCase();  // the default case, resolved
+
+ private:
+  explicit ResolvedCase(CaseConfig c) : CaseConfig(std::move(c)) {}
+  friend ResolvedCase withDefaults(CaseConfig c);
+};
+
+// The defaults filled in, after validation.
+ResolvedCase withDefaults(CaseConfig c);
+ResolvedCase withDefaults(const ResolvedCase&) = delete;  // defaults are applied once
+
 // Keys that nothing the case chose reads (alpha with the seed model, gamma
 // with a linear EOS, output_interval with output_every, ...), given or not,
 // each with the reason; a resolved case (run.case) leaves them out.
-std::vector<std::pair<std::string, std::string>> unusedKeys(const CaseConfig& c);
+std::vector<std::pair<std::string, std::string>> unusedKeys(const ResolvedCase& c);
 // The warnings for the keys among those that the case sets.
-std::vector<std::string> unusedKeyNotes(const CaseConfig& c);
+std::vector<std::string> unusedKeyNotes(const ResolvedCase& c);
 
 // The body acceleration of a validated case: `gravity`, or -g along the
 // last axis.
@@ -208,8 +226,5 @@ Vec<D> toVec(const std::vector<Real>& v) {
 // Number of steps that reach end_time with a fixed dt: ceil(end_time / dt)
 // up to round-off.
 long stepsFor(const CaseConfig& c);
-
-// The model-dependent defaults filled in ("" choices), after validation.
-CaseConfig withDefaults(CaseConfig c);
 
 }  // namespace sph

@@ -30,6 +30,18 @@ struct KeyRange {
   bool contains(double x) const;
 };
 
+// Ranges by their ends (case_keys.cpp and the method parameters of
+// methods.hpp): open and closed ends, integers.
+namespace key_range {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+inline KeyRange above(double lo, double hi = kInf) { return {lo, hi, true, false, false}; }
+inline KeyRange within(double lo, double hi) { return {lo, hi, false, false, false}; }
+inline KeyRange count(double lo, double hi) { return {lo, hi, false, false, true}; }
+// Coordinates and lengths: large enough for any scene, small enough that
+// every product the program forms stays finite.
+inline KeyRange coordinate() { return within(-1e9, 1e9); }
+}  // namespace key_range
+
 using KeyField = std::variant<Real CaseConfig::*, long CaseConfig::*, int CaseConfig::*, bool CaseConfig::*,
                               std::string CaseConfig::*, std::vector<Real> CaseConfig::*,
                               std::vector<long> CaseConfig::*>;
@@ -73,7 +85,7 @@ bool isResumeKey(const std::string& name);
 std::string resumeKeysText();  // "end_time, output_every, ... and progress", for messages
 
 // A case file holding every key with its value in c, by topic.
-std::string resolvedCaseText(const CaseConfig& c);
+std::string resolvedCaseText(const ResolvedCase& c);
 
 // The key reference, docs/keys.md (src/key_reference.cpp): every key as
 // Markdown tables by topic, with unit, default, allowed values and help.

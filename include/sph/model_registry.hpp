@@ -2,7 +2,7 @@
 // viscosity, body forces and integrator, built from the method tables of
 // methods.hpp (the one place a method is registered). A choice set to "none"
 // (or a coefficient of 0) constructs nothing. Call with a validated case
-// whose defaults are filled in (withDefaults).
+// whose defaults are filled in (a ResolvedCase, from withDefaults).
 #pragma once
 
 #include "sph/case_config.hpp"
@@ -18,30 +18,22 @@
 
 namespace sph {
 
-// The row of a method table called `name`, or a CaseError naming the key.
-template <class Table>
-const typename Table::value_type& methodRow(const Table& table, const char* key, const std::string& name) {
-  if (const auto* row = findMethod(table, name)) return *row;
-  throw CaseError(std::string(key) + " = \"" + name + "\" is not known");
-}
-
 template <int D>
-Kernel<D> makeKernel(const CaseConfig& c) {
+Kernel<D> makeKernel(const ResolvedCase& c) {
   return methodRow(kernelMethods<D>(), "kernel", c.kernel).make(c);
 }
 
 // The kernel probes interpolate with: the case's; the seed model's kernels
 // are its own, so there a Wendland C2 with the seed's support h stands in.
 template <int D>
-Kernel<D> makeProbeKernel(const CaseConfig& c) {
-  CaseConfig probe = c;
-  if (probe.kernel.empty()) probe.kernel = "wendland_c2", probe.h = c.h / 2;
-  return makeKernel<D>(probe);
+Kernel<D> makeProbeKernel(const ResolvedCase& c) {
+  if (!c.kernel.empty()) return makeKernel<D>(c);
+  return WendlandC2<D>(c.h / 2);
 }
 
-inline EquationOfState makeEos(const CaseConfig& c) { return methodRow(eosMethods(), "eos", c.eos).make(c); }
+inline EquationOfState makeEos(const ResolvedCase& c) { return methodRow(eosMethods(), "eos", c.eos).make(c); }
 
-inline ViscosityChoice makeViscosity(const CaseConfig& c) {
+inline ViscosityChoice makeViscosity(const ResolvedCase& c) {
   return methodRow(viscosityMethods(), "viscosity", c.viscosity).make(c);
 }
 
@@ -53,8 +45,8 @@ inline Real starLambda(const CaseConfig& c) {
 // The paddle's motion (case keys paddle, paddle_amplitude, paddle_period),
 // none when the case has none; nFluid: the fluid particles before the walls.
 template <int D>
-std::optional<SinusoidalWallMotion<D>> makeWallMotion(const CaseConfig& c, std::size_t nFluid) {
-  if (c.paddle <= 0 || !c.walls || c.boundary == "reflecting") return std::nullopt;
+std::optional<SinusoidalWallMotion<D>> makeWallMotion(const ResolvedCase& c, std::size_t nFluid) {
+  if (c.paddle <= 0 || !wallParticles(c)) return std::nullopt;
   const auto range = obstacleParticleRange<D>(c, wallLayersUsed(c), static_cast<std::size_t>(c.paddle - 1));
   SinusoidalWallMotion<D> m;
   m.firstId = static_cast<std::int64_t>(nFluid + range.first);
@@ -65,17 +57,17 @@ std::optional<SinusoidalWallMotion<D>> makeWallMotion(const CaseConfig& c, std::
 }
 
 template <int D>
-Model<D> makeModel(const CaseConfig& c, std::optional<SinusoidalWallMotion<D>> wallMotion = std::nullopt) {
-  if (c.model == "seed_wcsph") return makeSeedWcsph<D>(SeedWcsphParameters{c.h, c.k, c.rho0, c.mu, c.g});
+Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>> wallMotion = std::nullopt) {
+  if (!composedModel(c)) return makeSeedWcsph<D>(SeedWcsphParameters{c.h, c.k, c.rho0, c.mu, c.g});
   WcsphSpec<D> spec{makeKernel<D>(c), makeEos(c), makeViscosity(c), c.rho0, {}, c.xsph};
   const Vec<D> g = gravityVector<D>(c);
   if (!g.isZero()) spec.bodies.gravity = UniformGravity<D>{g};
   if (c.starMass > 0) spec.bodies.star = StarAttraction<D>{starLambda(c)};
   if (c.damping > 0) spec.bodies.damping = LinearDamping<D>{c.damping};
-  spec.density = methodRow(densityMethods(), "density", c.density).make(c);
+  spec.density = densityTreatment(c);
   spec.delta = c.delta;
   spec.hydrostaticDiffusion = c.diffusion == "fourtakas";
-  spec.walls = c.walls ? methodRow(boundaryMethods(), "boundary", c.boundary).make(c) : WallTreatment::kNoParticles;
+  spec.walls = c.walls ? wallTreatment(c) : WallTreatment::kNoParticles;
   spec.noSlip = c.wallSlip == "no_slip";
   spec.spacing = c.spacing;
   spec.clampNegative = c.negativePressure == "clamp";
@@ -107,7 +99,7 @@ std::vector<AxisBox<D>> obstacleBoxes(const CaseConfig& c) {
 // The guard at the wall particles' surfaces: the faces of the domain box
 // that have walls (not periodic, not an open top) and every obstacle box.
 template <int D>
-WallGuard<D> makeWallGuard(const CaseConfig& c) {
+WallGuard<D> makeWallGuard(const ResolvedCase& c) {
   WallGuard<D> guard;
   const unsigned periodic = periodicAxes(c);
   for (int d = 0; d < D; ++d) {
@@ -124,36 +116,36 @@ WallGuard<D> makeWallGuard(const CaseConfig& c) {
 // boundaries or without walls. They act on the faces of the domain box:
 // along a periodic axis their faces are at infinity.
 template <int D>
-std::optional<DampedReflectingWalls<D>> makeReflectingWalls(const CaseConfig& c) {
-  if (!c.walls || c.boundary != "reflecting") return std::nullopt;
+std::optional<DampedReflectingWalls<D>> makeReflectingWalls(const ResolvedCase& c) {
+  if (!c.walls || wallTreatment(c) != WallTreatment::kNoParticles) return std::nullopt;
   Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
   const unsigned periodic = periodicAxes(c);
   for (int d = 0; d < D; ++d)
     if ((periodic >> d) & 1u) lo[d] = -std::numeric_limits<Real>::infinity(), hi[d] = std::numeric_limits<Real>::infinity();
   return DampedReflectingWalls<D>{lo, hi, c.h, c.restitution,
-                                  c.model == "seed_wcsph" ? ReflectionRule::kSeed : ReflectionRule::kApproaching};
+                                  composedModel(c) ? ReflectionRule::kApproaching : ReflectionRule::kSeed};
 }
 
 // The wall guard (wall_guard key) acts at wall-particle boundaries only.
-inline bool wallGuardOn(const CaseConfig& c) { return c.walls && c.boundary != "reflecting" && c.wallGuard; }
+inline bool wallGuardOn(const ResolvedCase& c) { return wallParticles(c) && c.wallGuard; }
 
 template <int D>
 Integrator<D> makeIntegrator(const std::string& name) {
-  return methodRow(integratorMethods<D>(), "integrator", name).make(CaseConfig{});
+  return methodRow(integratorMethods<D>(), "integrator", name).make(ResolvedCase{});
 }
 
 // The scene of a validated case (defaults filled in) from its initial state.
 // `startTime`: where the run's clock started (a fixed-dt run is at
 // startTime + n dt after step n); by default the time of the particles.
 template <int D>
-Scene<D> makeScene(const CaseConfig& c, InitialState<D> init,
+Scene<D> makeScene(const ResolvedCase& c, InitialState<D> init,
                    Real startTime = std::numeric_limits<Real>::quiet_NaN()) {
   const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
   const PeriodicBox<D> periodic{lo, hi - lo, periodicAxes(c)};
   const std::optional<DampedReflectingWalls<D>> walls = makeReflectingWalls<D>(c);
   if (std::isnan(startTime)) startTime = init.startTime;
   StateCheck<D> check(lo, hi);
-  check.wallParticles = c.walls && c.boundary != "reflecting";
+  check.wallParticles = wallParticles(c);
   if (check.wallParticles) check.tolerance = c.spacing / 2;
   check.openTop = check.wallParticles && !c.lid;
   // (The paddle moves: fluid inside it is not looked for.)

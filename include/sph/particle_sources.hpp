@@ -30,7 +30,7 @@ struct InitialState {
 // Builds the initial particles of a validated case; throws CaseError on a
 // missing or malformed file, zero particles, or a particle outside the domain.
 template <int D>
-InitialState<D> buildInitialState(const CaseConfig& c);
+InitialState<D> buildInitialState(const ResolvedCase& c);
 
 // The particles of a snapshot sph wrote, with everything a resumed run needs
 // to continue bit for bit: state (x, v, rho, m, id, kind) and the rates the

@@ -28,7 +28,7 @@ class RunOutput;
 // be written (the record says so, if it can); the record is otherwise left
 // for RunReport::finish.
 template <int D>
-RunTotals driveRun(const CaseConfig& c, Scene<D>& scene, RunOutput<D>& output, RunReport& report,
+RunTotals driveRun(const ResolvedCase& c, Scene<D>& scene, RunOutput<D>& output, RunReport& report,
                    ThreadTuner& tuner, std::unique_ptr<Catalyst>& catalyst, const SnapshotInfo& info,
                    Real startTime, Real resumeTime, bool resuming, std::ostream& err);
 

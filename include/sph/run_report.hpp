@@ -48,7 +48,7 @@ class RunReport {
   // The record at the start of a run into `dir`: a new one, or, resuming,
   // the run's `previous` one with the keys a resume may change and a line in
   // resumed_at. n particles, `fluid` of them fluid.
-  RunReport(const std::filesystem::path& dir, const CaseConfig& c, const RunRecord& previous, bool resuming,
+  RunReport(const std::filesystem::path& dir, const ResolvedCase& c, const RunRecord& previous, bool resuming,
             long resumeStep, Real resumeTime, Real startTime, std::size_t n, std::size_t fluid);
 
   RunRecord& record() { return record_; }
@@ -61,7 +61,7 @@ class RunReport {
   // At the end: the record's figures saved, and the summary to out (and the
   // resume hint of a stopped run to err); throws std::runtime_error.
   template <int D>
-  void finish(const Scene<D>& scene, const CaseConfig& c, const RunTotals& totals, const ThreadTuner& tuner,
+  void finish(const Scene<D>& scene, const ResolvedCase& c, const RunTotals& totals, const ThreadTuner& tuner,
               bool autoThreads, Real resumeTime, const RunOutput<D>& output, std::ostream& out, std::ostream& err);
 
  private:

@@ -16,7 +16,7 @@ namespace sph {
 
 template <int D>
 struct RunStart {
-  CaseConfig c;              // validated, defaults filled in
+  ResolvedCase c;            // validated, defaults filled in
   InitialState<D> init;      // the particles to start from
   bool resuming = false;
   RunRecord previous;        // the resumed run's record (resuming only)

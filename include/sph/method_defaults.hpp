@@ -1,0 +1,18 @@
+// The methods a case takes when it names none (part of the registry,
+// methods.hpp): the model, boundary and density treatment as CaseConfig's
+// initial values; the integrator always, and the kernel, EOS and viscosity
+// under a composed model, filled in by withDefaults (the one place defaults
+// are applied). The key table's defaults read these too.
+#pragma once
+
+namespace sph {
+
+inline constexpr const char* kDefaultModel = "seed_wcsph";
+inline constexpr const char* kDefaultIntegrator = "leap_frog";
+inline constexpr const char* kDefaultKernel = "cubic_spline";
+inline constexpr const char* kDefaultEos = "linear";
+inline constexpr const char* kDefaultViscosity = "laplacian";
+inline constexpr const char* kDefaultBoundary = "reflecting";
+inline constexpr const char* kDefaultDensity = "summation";
+
+}  // namespace sph
