@@ -7,11 +7,14 @@
 //
 //   sph-bench [--suite seed|water|kernels|3d|star|all] [--n 10000,100000]
 //             [--hdx 1.35,2.5] [--steps 200] [--repeats 5] [--threads 1,2]
+//             [--integrator leap_frog]
 //
 // Suites: seed    the seed scheme's dam break (2D) at the given N and h/dx;
 //         water   the wall-particle dam break (2D; dummy and dynamic walls,
 //                 continuity density, delta-SPH, Wendland at h/dx 1.3: ~20
-//                 neighbours) at the given N of fluid particles;
+//                 neighbours) at the given N of fluid particles, with
+//                 --integrator (leap_frog; two_step_leap_frog: one
+//                 neighbour walk per step);
 //         kernels the wcsph dam break (2D, Tait, Laplacian viscosity) with
 //                 each kernel at its usual support (~20 neighbours);
 //         3d      the wcsph dam break in 3D (cubic spline);
@@ -99,7 +102,7 @@ CaseConfig damBreak(int dim, double n, double kernelHdx, const std::string& mode
 // 2a high against the left wall of a tank 4a x 2.5a, Wendland C2 at h/dx,
 // Tait, continuity density with delta-SPH, Monaghan viscosity, wall
 // particles of the given treatment.
-CaseConfig waterDamBreak(double n, double hdx, const std::string& boundary) {
+CaseConfig waterDamBreak(double n, double hdx, const std::string& boundary, const std::string& integrator) {
   CaseConfig c;
   c.model = "wcsph";
   c.dimension = 2;
@@ -122,6 +125,7 @@ CaseConfig waterDamBreak(double n, double hdx, const std::string& boundary) {
   c.blockMin = {0, 0};
   c.blockMax = {a, 2 * a};
   c.dt = 0.15 * c.h / c.c0;
+  c.integrator = integrator;
   return c;
 }
 
@@ -194,11 +198,12 @@ void runScenario(const Scenario& sc, const std::vector<double>& threads, int ste
 
 int main(int argc, char** argv) {
   std::vector<double> ns{10000, 100000}, hdxs{1.35, 2.5}, threads{1, 2};
-  std::string suite = "all";
+  std::string suite = "all", integrator = "leap_frog";
   int steps = 200, repeats = 5;
   const char* usage =
       "usage: sph-bench [--suite seed|water|kernels|3d|star|all] [--n 10000,100000]\n"
-      "                 [--hdx 1.35,2.5] [--steps 200] [--repeats 5] [--threads 1,2]\n";
+      "                 [--hdx 1.35,2.5] [--steps 200] [--repeats 5] [--threads 1,2]\n"
+      "                 [--integrator leap_frog|two_step_leap_frog] (the water suite's)\n";
   for (int i = 1; i < argc; i += 2) {
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
       std::fputs(usage, stdout);
@@ -214,6 +219,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--steps")) steps = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--repeats")) repeats = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--suite")) suite = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--integrator")) integrator = argv[i + 1];
     else {
       std::fprintf(stderr, "sph-bench: unknown option %s\n%s", argv[i], usage);
       return 2;
@@ -245,7 +251,7 @@ int main(int argc, char** argv) {
       for (const char* boundary : {"dummy", "dynamic"}) {
         char label[64];
         std::snprintf(label, sizeof label, "water %s h/dx=1.3", boundary);
-        s2.push_back({label, waterDamBreak(n, 1.3, boundary)});
+        s2.push_back({label, waterDamBreak(n, 1.3, boundary, integrator)});
       }
   if (all || suite == "3d") s3.push_back({"wcsph dam break cubic_spline", damBreak(3, 50000, 1.3, "wcsph", "cubic_spline")});
   if (all || suite == "star") {

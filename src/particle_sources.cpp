@@ -433,6 +433,8 @@ InitialState<D> resumeState(const std::string& snapshot) {
   if (!f.colour.empty()) P.colour = f.colour;  // surface tension: the phases as they were
   if (!f.vXsph.empty())
     for (const auto& w : f.vXsph) P.vXsph.push_back(vec(w));
+  for (const auto& w : f.vPrev) P.vPrev.push_back(vec(w));  // two-step leap-frog
+  if (!f.rhoPrev.empty()) P.rhoPrev = f.rhoPrev;
   s.massesGiven = true;
   s.startTime = f.time;
   s.startStep = f.step;

@@ -380,7 +380,7 @@ struct Layout {
   bool velocity = false, mass = false, id = false, time = false;
   // The arrays a resume reads besides (the state an integrator carries).
   bool acceleration = false, density = false, densityRate = false, xsph = false, kind = false, step = false;
-  bool colour = false;
+  bool colour = false, velocityPrevious = false, densityPrevious = false;
 };
 
 const Element* onlyChild(const Header& h, const Element& parent, const std::string& name, bool required,
@@ -531,15 +531,17 @@ Layout checkLayout(const std::string& path) {
       const std::pair<const char*, bool*> known[] = {
           {"velocity", &L.velocity},       {"mass", &L.mass},        {"id", &L.id},
           {"acceleration", &L.acceleration}, {"density", &L.density}, {"density_rate", &L.densityRate},
-          {"xsph_velocity", &L.xsph},      {"kind", &L.kind},       {"colour", &L.colour}};
+          {"xsph_velocity", &L.xsph},      {"kind", &L.kind},       {"colour", &L.colour},
+          {"velocity_previous", &L.velocityPrevious}, {"density_previous", &L.densityPrevious}};
       for (const auto& [known_name, seen] : known) {
         if (name != known_name) continue;
         if (*seen) throw Problem("has two point arrays named \"" + name + "\"");
         *seen = true;
       }
-      if (name == "velocity" || name == "acceleration" || name == "xsph_velocity")
+      if (name == "velocity" || name == "acceleration" || name == "xsph_velocity" || name == "velocity_previous")
         require(isFloatType(arrayType) && components == 3, "type Float32 or Float64 and 3 components");
-      if (name == "mass" || name == "density" || name == "density_rate" || name == "colour")
+      if (name == "mass" || name == "density" || name == "density_rate" || name == "colour" ||
+          name == "density_previous")
         require(isFloatType(arrayType) && components == 1, "type Float32 or Float64 and 1 component");
       if (name == "id" || name == "kind") require(!isFloatType(arrayType) && components == 1, "an integer type and 1 component");
     }
@@ -637,7 +639,7 @@ VtpParticles readChecked(const std::string& path) {
   vtkDataArraySelection* arrays = reader->GetPointDataArraySelection();
   arrays->DisableAllArrays();
   for (const char* name : {"velocity", "mass", "id", "acceleration", "density", "density_rate", "xsph_velocity", "kind",
-                           "colour"})
+                           "colour", "velocity_previous", "density_previous"})
     arrays->EnableArray(name);
   reader->GetCellDataArraySelection()->DisableAllArrays();
   reader->Update();
@@ -720,6 +722,8 @@ VtpParticles readChecked(const std::string& path) {
   readScalars(L.density, "density", out.rho);
   readScalars(L.densityRate, "density_rate", out.drho);
   readScalars(L.colour, "colour", out.colour);
+  readVectors(L.velocityPrevious, "velocity_previous", out.vPrev);
+  readScalars(L.densityPrevious, "density_previous", out.rhoPrev);
   if (L.kind) {
     vtkDataArray* k = pointArray("kind", 1);
     out.kind.resize(count);

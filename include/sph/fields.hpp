@@ -48,6 +48,8 @@ enum FieldId : unsigned {
   kFieldColour,    // colour (phase) of a fluid particle: 1 in the phase with surface tension, 0 outside
   kFieldColourNormal,     // colour-field normal n = grad c (surface tension)
   kFieldCurvature,        // curvature kappa of the colour field's surface (surface tension)
+  kFieldVPrev,     // two-step leap-frog: the filtered velocity of the step before
+  kFieldRhoPrev,   // ... and density
   kFieldCount
 };
 
@@ -95,6 +97,8 @@ inline constexpr FieldInfo kFieldTable[kFieldCount] = {
     {kFieldColour, "colour", FieldRole::kState, "colour", "1", "1"},
     {kFieldColourNormal, "colourNormal", FieldRole::kDerived, "colour_normal", "1/m", "1/m"},
     {kFieldCurvature, "curvature", FieldRole::kDerived, "curvature", "1/m", "1/m"},
+    {kFieldVPrev, "vPrev", FieldRole::kState, "velocity_previous", "m/s", "m/s"},
+    {kFieldRhoPrev, "rhoPrev", FieldRole::kState, "density_previous", "kg/m^3", "kg/m^2"},
 };
 
 constexpr bool isPermuted(FieldRole r) { return r == FieldRole::kState || r == FieldRole::kStage; }

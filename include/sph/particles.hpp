@@ -53,6 +53,8 @@ struct FieldArrays {
   std::vector<Real> colour;
   std::vector<Vec<D>> colourNormal;
   std::vector<Real> curvature;
+  std::vector<Vec<D>> vPrev;
+  std::vector<Real> rhoPrev;
 
   // f(info, field of s0, field of s1, ...) for every row of the table, in
   // table order: the one place that lists the members.
@@ -82,6 +84,8 @@ struct FieldArrays {
     f(kFieldTable[kFieldColour], s.colour...);
     f(kFieldTable[kFieldColourNormal], s.colourNormal...);
     f(kFieldTable[kFieldCurvature], s.curvature...);
+    f(kFieldTable[kFieldVPrev], s.vPrev...);
+    f(kFieldTable[kFieldRhoPrev], s.rhoPrev...);
   }
 
   // Call f(info, array) for every field.

@@ -238,6 +238,7 @@ std::optional<StateFailure> Scene<D>::step(Real landOn) {
   std::optional<StateFailure> failure;
   if (shifting_) shifting_->apply(P_, neighbours_, choice.dt);
   if (wallMotion_) wallMotion_->advance(P_, time_, time_ + choice.dt);
+  if (auto* twoStep = std::get_if<TwoStepLeapFrog<D>>(&integrator_)) twoStep->step = step_;
   std::visit(
       [&](const auto& integrator) {
         context_.densityRateApart = std::decay_t<decltype(integrator)>::kDensityRateApart;

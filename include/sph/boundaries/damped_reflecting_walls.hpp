@@ -49,6 +49,7 @@ struct DampedReflectingWalls {
   void reflect(Particles<D>& P, std::size_t i, int d, int outward) const {
     const bool always = rule == ReflectionRule::kSeed;
     if (!P.vHalf.empty() && (always || P.vHalf[i][d] * outward > 0)) P.vHalf[i][d] *= -restitution;
+    if (!P.vPrev.empty() && (always || P.vPrev[i][d] * outward > 0)) P.vPrev[i][d] *= -restitution;
     if (always || P.v[i][d] * outward > 0) P.v[i][d] *= -restitution;
   }
 };

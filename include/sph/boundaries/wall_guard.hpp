@@ -102,6 +102,7 @@ struct WallGuard {
   static void stopInto(Particles<D>& P, std::size_t i, int d, int into, Real u) {
     if ((P.v[i][d] - u) * into > 0) P.v[i][d] = u;
     if (!P.vHalf.empty() && (P.vHalf[i][d] - u) * into > 0) P.vHalf[i][d] = u;
+    if (!P.vPrev.empty() && (P.vPrev[i][d] - u) * into > 0) P.vPrev[i][d] = u;
   }
 };
 

@@ -6,12 +6,13 @@
 #include "sph/integrators/leap_frog.hpp"
 #include "sph/integrators/runge_kutta4.hpp"
 #include "sph/integrators/symplectic_euler.hpp"
+#include "sph/integrators/two_step_leap_frog.hpp"
 
 #include <variant>
 
 namespace sph {
 
 template <int D>
-using Integrator = std::variant<LeapFrog<D>, SymplecticEuler<D>, RungeKutta4<D>, ExplicitEuler<D>>;
+using Integrator = std::variant<LeapFrog<D>, SymplecticEuler<D>, RungeKutta4<D>, ExplicitEuler<D>, TwoStepLeapFrog<D>>;
 
 }  // namespace sph

@@ -6,7 +6,7 @@
 // allocated field of the field table that has a snapshot name (fields.hpp):
 // velocity, acceleration (3 components, also in 2D), density, pressure,
 // mass, id, and when present density_rate, kind, xsph_velocity, colour,
-// colour_normal, curvature, each with its SI unit as the UNITS_LABEL
+// colour_normal, curvature, velocity_previous, density_previous, each with its SI unit as the UNITS_LABEL
 // information key (Pa or N/m, ...: snapshot_polydata.hpp). Field data:
 // TimeValue (ParaView's time key), step, smoothing_length, dimension,
 // particle_spacing, and domain_min/domain_max (D values each) when the
@@ -45,6 +45,8 @@ struct VtpParticles {
   std::vector<Real> rho, drho;
   std::vector<std::uint8_t> kind;
   std::vector<Real> colour;      // surface tension: the particles' phase colour
+  std::vector<std::array<Real, 3>> vPrev;  // two-step leap-frog: filtered velocity and density of the step before
+  std::vector<Real> rhoPrev;
 };
 
 // Reads the particles of a .vtp (src/vtp_read.cpp): one PolyData piece, in
