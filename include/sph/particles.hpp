@@ -11,7 +11,7 @@
 // re-sort); these are the owned particles. After them, while a periodic box
 // has them (periodic_ghosts.hpp), come the ghosts [size(), totalSize()):
 // copies of owned particles shifted by a box length, ghosts of fluid first,
-// then ghosts of walls. range(ParticleRangeName::kGhost) etc. name the three. Every array has
+// then ghosts of walls. Every array has
 // totalSize() entries; size() counts the owned particles only, so the
 // integrators, the checks, the energies and the output never see a ghost.
 // A ghost is the output of no pass: refreshGhosts() copies its fields from
@@ -130,13 +130,6 @@ static_assert([] {
   return true;
 }(), "kFieldTable rows must be in FieldId order");
 
-// A half-open range of particle indices.
-struct ParticleRange {
-  std::size_t begin = 0, end = 0;
-  std::size_t size() const { return end - begin; }
-};
-enum class ParticleRangeName { kFluid, kWall, kGhost };
-
 template <int D>
 struct Particles : FieldArrays<D> {
   using FieldArrays<D>::x;
@@ -155,11 +148,6 @@ struct Particles : FieldArrays<D> {
   // Fluid particles are [0, fluidCount()), walls [fluidCount(), size()).
   std::size_t fluidCount() const { return fluid_; }
   bool hasWalls() const { return fluid_ < size(); }
-  ParticleRange range(ParticleRangeName k) const {
-    if (k == ParticleRangeName::kFluid) return {0, fluid_};
-    if (k == ParticleRangeName::kWall) return {fluid_, size()};
-    return {size(), totalSize()};
-  }
   // Ghosts of fluid particles are [size(), ghostFluidEnd()), of walls the rest.
   std::size_t ghostFluidEnd() const { return size() + ghostFluid_; }
   const std::vector<std::uint32_t>& ghostSource() const { return ghostSource_; }
