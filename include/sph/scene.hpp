@@ -34,6 +34,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <variant>
@@ -63,6 +64,14 @@ class Scene {
     P_.resize(P_.size(), P_.fluidCount() ? P_.fluidCount() : SIZE_MAX);
     const bool density = (model_.needs() & fieldBit(kFieldDrho)) != 0;
     const FieldSet integratorNeeds = std::visit([&](const auto& i) { return i.needs(density); }, integrator_);
+    // The state the integrator carries between steps (two-step leap-frog's
+    // previous velocity and density) that the particles came without: a
+    // resumed run cannot continue without it (resume()).
+    const std::size_t n = P_.size();
+    P_.forEachField([&](const FieldInfo& info, const auto& field) {
+      if (((integratorNeeds >> info.id) & 1u) && info.role == FieldRole::kState && field.size() != n)
+        carriedMissing_ |= fieldBit(info.id);
+    });
     P_.allocate(model_.needs() | integratorNeeds);
     if (auto* leapFrog = std::get_if<LeapFrog<D>>(&integrator_))
       leapFrog->forcesSeeHalfStepVelocity = model_.forcesSeeHalfStepVelocity();
@@ -181,6 +190,7 @@ class Scene {
   std::optional<SinusoidalWallMotion<D>> wallMotion_;
   std::optional<WallGuard<D>> guard_;
   long guardActions_ = 0;
+  FieldSet carriedMissing_ = 0;  // integrator state the particles came without
   HashGrid<D> grid_;
   NeighbourList<D> neighbours_;
   Real startTime_;
@@ -209,6 +219,13 @@ template <int D>
 std::optional<StateFailure> Scene<D>::resume(long step, Real time) {
   step_ = step;
   time_ = time;
+  if (step > 0)
+    for (const FieldInfo& info : kFieldTable)
+      if ((carriedMissing_ >> info.id) & 1u)
+        throw std::runtime_error(std::string("the snapshot has no ") + info.vtkName + " array, which the integrator " +
+                                 std::visit([](const auto& i) { return std::string(i.name); }, integrator_) +
+                                 " carries from step to step (written with another integrator? resume with the "
+                                 "run's own integrator)");
   sort();
   const auto& order = grid_.order();
   for (std::size_t k = 0; k < P_.size(); ++k)
