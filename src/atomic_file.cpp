@@ -43,6 +43,13 @@ void writeFileAtomically(const std::string& path, const std::string& content) {
   commitTemporary(path);
 }
 
+void appendToFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::app);
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
 std::size_t removeStaleTemporaries(const std::filesystem::path& dir) {
   static const char* suffixes[] = {".vtp.tmp", ".pvd.tmp", ".csv.tmp", ".json.tmp", ".case.tmp"};
   std::vector<std::filesystem::path> stale;

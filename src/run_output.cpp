@@ -17,13 +17,15 @@ namespace sph {
 namespace {
 
 // Lines of a CSV file whose first column (a number) passes keep(), header
-// kept; "" if the file cannot be read.
+// kept; "" if the file cannot be read. A last line without its newline (a
+// run killed while appending it) is dropped.
 template <class Keep>
 std::string csvLinesWhere(const std::filesystem::path& path, Keep keep) {
   std::ifstream in(path);
   std::string out, line;
   bool header = true;
   while (std::getline(in, line)) {
+    if (in.eof()) break;  // no newline: an unfinished row
     if (header) {
       out += line + "\n";
       header = false;
@@ -86,21 +88,19 @@ void RunOutput<D>::write(const Scene<D>& scene) {
   info_.step = scene.stepIndex();
   writeVtp<D>((dir_ / vtp).string(), scene.particles(), info_);
   record_.addFile(vtp);
-  series_.add(scene.time(), scene.stepIndex(), vtp);
-  record_.addFile(name_ + ".pvd");
+  // The logs first, the series last: a run killed in between leaves rows
+  // past the series' last snapshot, which a resume drops (resumeAfter).
   const Energy e = scene.energy();
   char line[160];
   std::snprintf(line, sizeof line, "%s,%.10g,%.10g,%.10g\n", shortestDecimal(scene.time()).c_str(), e.kinetic,
                 e.potential, e.total());
   energy_ += line;
-  writeFileAtomically((dir_ / "energy.csv").string(), energy_);
-  record_.addFile("energy.csv");
+  writeLog("energy.csv", energy_);
   if (count_ == 0 && lastStep_ < 0) sampleProbes(scene);
-  for (const auto& f : probes_.files()) {
-    writeFileAtomically((dir_ / f.name).string(), *f.text);
-    record_.addFile(f.name);
-  }
+  for (const auto& f : probes_.files()) writeLog(f.name, *f.text);
   flushTimeSteps();
+  series_.add(scene.time(), scene.stepIndex(), vtp);
+  record_.addFile(name_ + ".pvd");
   ++count_;
   lastStep_ = scene.stepIndex();
   lastTime_ = scene.time();
@@ -125,8 +125,20 @@ void RunOutput<D>::addTimeStep(const Scene<D>& scene) {
 template <int D>
 void RunOutput<D>::flushTimeSteps() {
   if (!adaptive_) return;
-  writeFileAtomically((dir_ / "timestep.csv").string(), dtLog_);
-  record_.addFile("timestep.csv");
+  writeLog("timestep.csv", dtLog_);
+}
+
+template <int D>
+void RunOutput<D>::writeLog(const std::string& file, const std::string& text) {
+  const std::string path = (dir_ / file).string();
+  const auto known = onDisk_.find(file);
+  if (known == onDisk_.end() || known->second > text.size()) {
+    writeFileAtomically(path, text);
+  } else if (known->second < text.size()) {
+    appendToFile(path, text.substr(known->second));
+  }
+  onDisk_[file] = text.size();
+  record_.addFile(file);
 }
 
 template <int D>

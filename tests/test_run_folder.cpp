@@ -29,6 +29,7 @@
 #include <map>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <thread>
 
 using namespace sph;
@@ -615,6 +616,56 @@ BOOST_AUTO_TEST_CASE(resume_is_bit_identical) {
       }
     }
   }
+}
+
+// The logs (energy.csv, timestep.csv) grow by appended rows. A run killed
+// while appending leaves rows past its series' last snapshot, the last one
+// possibly without its newline: a resume drops them, and the logs end as
+// those of the run never stopped.
+BOOST_AUTO_TEST_CASE(resume_drops_log_rows_past_the_last_snapshot) {
+  const auto dir = test::scratchDir("resume_logs");
+  const std::string box = wcsphCase(dir);
+  auto run = [&](const fs::path& out, const char* end) {
+    return test::runSph({"run", box, "--output", out.string(), "--end_time", end, "--cfl", "0.3", "--dt", "2e-4",
+                         "--output_interval", "0.001"});
+  };
+  const fs::path whole = dir / "whole", split = dir / "split";
+  BOOST_TEST_REQUIRE(run(whole, "0.004").exitCode == 0);
+  BOOST_TEST_REQUIRE(run(split, "0.002").exitCode == 0);
+  // Whole rows past the snapshot, then a row cut inside its first column,
+  // which reads as an early time (0.00 s, step 1).
+  std::ofstream(split / "energy.csv", std::ios::app) << "0.0025,1,2,3\n0.00";
+  std::ofstream(split / "timestep.csv", std::ios::app) << "99999,0.1,0.0001,cfl\n1";
+  const auto r = test::runSph({"run", "--resume", split.string(), "--end_time", "0.004"});
+  BOOST_TEST_REQUIRE(r.exitCode == 0, r.output);
+  for (const char* log : {"energy.csv", "timestep.csv"}) BOOST_TEST(readText(split / log) == readText(whole / log), log);
+}
+
+// A run whose snapshot lacks the state its integrator carries between steps
+// (run.case edited from leap_frog to two_step_leap_frog, or a snapshot
+// written by another integrator) is refused with one line naming the
+// missing array, and the folder is left as it was: continuing with zeros
+// for the previous velocity would be a different, wrong, run.
+BOOST_AUTO_TEST_CASE(resume_refuses_a_snapshot_without_the_integrators_state) {
+  const auto dir = test::scratchDir("resume_carried");
+  const fs::path out = dir / "run";
+  BOOST_TEST_REQUIRE(test::runSph({"run", wcsphCase(dir), "--output", out.string(), "--end_time", "0.002",
+                                   "--output_every", "10", "--integrator", "leap_frog"})
+                         .exitCode == 0);
+  {
+    std::ifstream in(out / "run.case");
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    const auto at = s.find("integrator = \"leap_frog\"");
+    BOOST_TEST_REQUIRE(at != std::string::npos, s);
+    s.replace(at, std::string("integrator = \"leap_frog\"").size(), "integrator = \"two_step_leap_frog\"");
+    std::ofstream(out / "run.case") << s;
+  }
+  const auto before = folderState(out);
+  expectOneLineError(test::runSph({"run", "--resume", out.string(), "--end_time", "0.004"}),
+                     "has no velocity_previous array, which the integrator two_step_leap_frog carries");
+  BOOST_TEST((folderState(out) == before));
 }
 
 // Snapshots every output_interval seconds of simulated time land exactly on

@@ -18,6 +18,13 @@ void writeFileAtomically(const std::string& path, const std::string& content);
 // temporary and throws std::runtime_error naming the file.
 void commitTemporary(const std::string& path);
 
+// Append `text` to the file at `path` (which exists) in one write: the way
+// a log that only grows (energy.csv, timestep.csv, the probe files) is
+// brought up to date without rewriting it. A run killed during the write may
+// leave a last line without its newline; readers of these logs drop it.
+// Throws std::runtime_error naming the file if it cannot be written.
+void appendToFile(const std::string& path, const std::string& text);
+
 inline std::string temporaryName(const std::string& path) { return path + ".tmp"; }
 
 // Deletes the temporaries of the files sph writes ("*.vtp.tmp", "*.pvd.tmp",

@@ -1,6 +1,6 @@
 // The files a run writes as it goes: snapshots (.vtp), the .pvd series,
-// energy.csv, timestep.csv (adaptive dt) and the probe files, each replaced
-// atomically and recorded in run.json; and, after a toy-star run, the star's
+// energy.csv, timestep.csv (adaptive dt) and the probe files (logs that grow
+// by appended rows; the rest replaced atomically), recorded in run.json; and, after a toy-star run, the star's
 // density profile. A resumed run continues the files of the run it resumes.
 #pragma once
 
@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <map>
 #include <string>
 
 namespace sph {
@@ -39,7 +40,7 @@ class RunOutput {
   void sampleProbes(const Scene<D>& scene);
   // The step's dt, for timestep.csv (adaptive dt only).
   void addTimeStep(const Scene<D>& scene);
-  // timestep.csv, replaced atomically like the other files.
+  // timestep.csv brought up to date.
   void flushTimeSteps();
 
   Real lastTime() const { return lastTime_; }
@@ -56,6 +57,13 @@ class RunOutput {
   bool adaptive_;
   ProbeFiles<D> probes_;
   std::string energy_, dtLog_;
+  // Bytes of each growing log (energy.csv, timestep.csv, probe files) on disk.
+  std::map<std::string, std::size_t> onDisk_;
+
+  // A log's whole text: written atomically the first time (a new run's
+  // header, or a resumed run's rows up to its snapshot), then only the rows
+  // added since appended, so a long run does not rewrite it at every snapshot.
+  void writeLog(const std::string& file, const std::string& text);
   long count_ = 0;
   long lastStep_ = -1;
   Real lastTime_ = 0;
