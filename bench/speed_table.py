@@ -24,6 +24,10 @@ Memory: the peak resident set (ru_maxrss) of the S-step run; "B/p" is its
 growth per added particle between the two sizes of a scenario,
 (RSS_2 - RSS_1) / (N_2 - N_1), which leaves out the program's fixed part.
 
+--old-build DIR: the sph of an earlier build (DIR/sph) runs every row too,
+interleaved, as extra rows marked "old"; "ratio" then also reads against the
+same yardstick, so before/after figures of a change come from one run.
+
 Figures are printed, never asserted; `uptime` is printed before and after.
 """
 import argparse
@@ -132,11 +136,15 @@ def main():
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--steps", type=int, default=0, help="steps per run (default: about 4e6 particle-steps)")
+    ap.add_argument("--old-build", help="an earlier build folder whose sph runs every row too, interleaved")
     ap.add_argument("--check", action="store_true",
                     help="exit 1 unless every figure of every row is finite and positive (the smoke test)")
     a = ap.parse_args()
     sph = os.path.join(a.build, "sph")
-    for exe in (sph, os.path.join(a.build, "sph-yardstick"), os.path.join(a.build, "sph-yardstick-3d")):
+    programs = {"": sph}  # row tag -> sph executable
+    if a.old_build:
+        programs[" old"] = os.path.join(a.old_build, "sph")
+    for exe in (*programs.values(), os.path.join(a.build, "sph-yardstick"), os.path.join(a.build, "sph-yardstick-3d")):
         if not os.access(exe, os.X_OK):
             sys.exit(f"speed_table: {exe} not found: build it first (cmake --build build)")
     names = a.scenarios.split(",")
@@ -149,7 +157,8 @@ def main():
         sizes = a.n3d if SCENARIOS[s].dim == 3 else a.n2d
         for n in [int(float(v)) for v in sizes.split(",")]:
             for t in threads:
-                rows.append((s, n, t))
+                for tag in programs:
+                    rows.append((s, n, t, tag))
     print("# uptime before:", subprocess.run(["uptime"], stdout=subprocess.PIPE, text=True).stdout.strip())
     print(f"# {a.repeats} interleaved repeats; medians; p-s = particle-steps; CPU = user + system seconds "
           "of S steps minus a 1-step run")
@@ -159,13 +168,13 @@ def main():
         folder = os.path.join(tmp, "run")
         for rep in range(a.repeats):
             for r in rows:
-                s, n, t = r
+                s, n, t, tag = r
                 sc = SCENARIOS[s]
                 steps = a.steps or max(10, min(400, round(4e6 / n)))
                 env = dict(os.environ, OMP_NUM_THREADS=str(t))
-                cmd1, dt = sc.command(sph, n, 1, t, folder)
+                cmd1, dt = sc.command(programs[tag], n, 1, t, folder)
                 out1, cpu1, _ = timed(cmd1, env, pin=(t == 1))
-                cmd, dt = sc.command(sph, n, steps, t, folder)
+                cmd, dt = sc.command(programs[tag], n, steps, t, folder)
                 out, cpu, rss = timed(cmd, env, pin=(t == 1))
                 total, wall, nb = parse_run(out)
                 stepping = float(re.search(r"stepping ([\d.e+-]+) s", out).group(1))
@@ -180,19 +189,19 @@ def main():
                 yn, ynb, _ = parse_yardstick(yout)
                 results[r]["ycpu"].append(rate(yn * (steps - 1), ycpu - ycpu1))
                 info[r] = (total, wall, nb, steps, dt, yn, ynb)
-    print(f"{'scenario':9s} {'D':>1s} {'N':>7s} {'wall':>6s} {'nbrs':>5s} {'thr':>3s} {'p-s/CPU s':>10s} "
+    print(f"{'scenario':13s} {'D':>1s} {'N':>7s} {'wall':>6s} {'nbrs':>5s} {'thr':>3s} {'p-s/CPU s':>10s} "
           f"{'p-s/s':>10s} {'CPU s/sim s':>11s} {'ns/pair':>7s} {'RSS MB':>7s} {'B/p':>5s} {'yardstick':>10s} "
           f"{'y N':>7s} {'y nbrs':>6s} {'y ns/pair':>9s} {'ratio':>6s}")
     bad = []
     for r in rows:
-        s, n, t = r
+        s, n, t, tag = r
         total, wall, nb, steps, dt, yn, ynb = info[r]
         cpu = statistics.median(results[r]["cpu"])
         wallps = statistics.median(results[r]["wall"])
         ycpu = statistics.median(results[r]["ycpu"])
         rss = statistics.median(results[r]["rss"])
         # B/p: growth of the peak RSS between this scenario's two sizes (same threads).
-        pair = [q for q in rows if q[0] == s and q[2] == t]
+        pair = [q for q in rows if q[0] == s and q[2] == t and q[3] == tag]
         bpp = "-"
         if len(pair) >= 2 and r == pair[-1]:
             lo, hi = pair[0], pair[-1]
@@ -203,12 +212,12 @@ def main():
         # CPU nanoseconds per listed neighbour (per pair seen from one side).
         ns_pair = 1e9 / (cpu * nb) if nb > 0 else float("nan")
         y_ns_pair = 1e9 / (ycpu * ynb) if ynb > 0 else float("nan")
-        print(f"{SCENARIOS[s].name:9s} {SCENARIOS[s].dim:1d} {total:7d} {wall:6d} {nb:5.1f} {t:3d} {fmt(cpu):>10s} "
+        print(f"{SCENARIOS[s].name + tag:13s} {SCENARIOS[s].dim:1d} {total:7d} {wall:6d} {nb:5.1f} {t:3d} {fmt(cpu):>10s} "
               f"{fmt(wallps):>10s} {cpu_per_sim:11.1f} {ns_pair:7.1f} {rss / 1e6:7.1f} {bpp:>5s} {fmt(ycpu):>10s} "
               f"{yn:7d} {ynb:6.1f} {y_ns_pair:9.1f} {cpu / ycpu:6.2f}")
         figures = [cpu, wallps, ycpu, rss, nb, ynb, cpu_per_sim]
         if not all(math.isfinite(f) and f > 0 for f in figures):
-            bad.append(f"{SCENARIOS[s].name} N={total} threads={t}")
+            bad.append(f"{SCENARIOS[s].name}{tag} N={total} threads={t}")
     print("# ratio = sph p-s per CPU s / yardstick p-s per CPU s (the same thread count, interleaved)")
     print("# nbrs: sph's mean neighbours per particle (a wall particle lists only fluid neighbours);"
           " y nbrs: the yardstick's; ns/pair: CPU ns per particle-step and listed neighbour")
