@@ -1,16 +1,17 @@
 // sph check: what a case implies before it runs (case_check.hpp).
 //
 // The stable ranges it warns about were measured with sph (docs/methods/seed-model.md, "Where
-// the seed scheme works", and docs/stability-atlas.md, issue 9):
-//   acoustic   leap-frog and symplectic Euler are unstable from c0 dt / h
-//              = 1.88 (cubic spline) and 1.81 (Wendland C2) at h/dx 1.3,
-//              rk4 from 2.67 and 2.56 (validation/stability_atlas.py, against
-//              tests/reference/acoustic_cfl_limits.csv); the usual aim is
-//              c0 dt / h <= 0.25, and past half the limit waves grow;
-//   pairing    the cubic spline pairs particles from h/dx 1.3 (39% of them
-//              at 1.3, 52-70% from 1.5); Wendland C2 stays clean to 2.0;
+// the seed scheme works", and docs/stability-atlas.md, issue 9); the methods
+// declare them (methods.hpp: KernelAdvice, IntegratorAdvice, ViscosityAdvice):
+//   acoustic   each kernel's c0 dt / h limit per integrator class (leap-frog
+//              and symplectic Euler from 1.88 with the cubic spline, 1.81
+//              with Wendland C2 at h/dx 1.3, rk4 from 2.67 and 2.56); the usual
+//              aim is c0 dt / h <= 0.25, and past half the limit waves grow;
+//   pairing    the h/dx from which a kernel pairs particles (the cubic spline
+//              from 1.3); Wendland C2 stays clean to 2.0;
 //   Mach       density varies as Ma^2: Ma <= 0.1 keeps it within 1%;
-//   explicit Euler gains energy every step whatever dt.
+//   an integrator unstable at every dt (explicit Euler gains energy every
+//   step), and one stable to a fraction of the viscous limit only.
 #include "sph/io/number_format.hpp"
 #include "sph/case_check.hpp"
 
@@ -133,16 +134,15 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
 
   // dt against the limits (time_step.hpp gives the adaptive ones).
   const Real dt = c.dt;
+  const IntegratorAdvice& integrator = chosenIntegratorRow<D>(c).traits;
   out << "  time step        dt = " << fmt(dt) << " s" << (c.cfl > 0 ? " (largest; adaptive, cfl " + fmt(c.cfl) + ")" : " (fixed)")
       << "\n";
   if (c0 > 0) {
     const Real courant = c0 * dt / h;
     // The stability atlas's measured limits at h/dx 1.3 (docs/stability-atlas.md).
-    const bool rk4 = c.integrator == "rk4", wendland = c.kernel == "wendland_c2";
-    const bool twoStep = c.integrator == "two_step_leap_frog";  // one walk per step: half leap-frog's limit
-    const Real limit = rk4 ? (wendland ? 2.56 : 2.67) : twoStep ? (wendland ? 0.86 : 0.89) : (wendland ? 1.81 : 1.88);
+    const Real limit = acousticLimit<D>(c);
     out << "    acoustic       c0 dt / h = " << fmt(courant) << " (aim <= 0.25; ";
-    if (c.integrator == "euler") out << "euler is unstable at every dt)\n";
+    if (integrator.unstable) out << c.integrator << " is unstable at every dt)\n";
     else out << c.integrator << " measured unstable from ~" << fmt(limit) << ")\n";
     if (c.cfl == 0 && courant > 0.5 * limit)
       warn("c0 dt / h = " + fmt(courant) + " is past half the measured acoustic limit " + fmt(limit) +
@@ -159,19 +159,21 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   // so a viscous term (laminar, or Monaghan's, nu = alpha h c0 / 8) is
   // stable only to about 1/20 of the viscous limit
   // (integrators/two_step_leap_frog.hpp; Taylor-Green at 0.045 blew up).
-  if (c.integrator == "two_step_leap_frog") {
-    const Real nuAll = nu + (c.viscosity == "monaghan" && c0 > 0 ? c.alpha * h * c0 / 8 : 0);
-    const Real bound = nuAll > 0 ? 0.02 * 0.125 * h * h / nuAll : 0;
+  if (integrator.viscousFraction < 1) {
+    const auto artificialNu = composedModel(c) ? chosenViscosity(c).traits.artificialNu : nullptr;
+    const Real nuAll = nu + (artificialNu && c0 > 0 ? artificialNu(c, h, c0) : 0);
+    const Real bound = nuAll > 0 ? integrator.viscousFraction * 0.125 * h * h / nuAll : 0;
     if (nuAll > 0 && dt > bound)
-      warn("integrator two_step_leap_frog amplifies the viscous term past dt ~ " + fmt(bound) +
-           " s (1/50 of the viscous limit for nu = " + fmt(nuAll) + " m^2/s): lower dt or use leap_frog");
+      warn("integrator " + c.integrator + " amplifies the viscous term past dt ~ " + fmt(bound) + " s (1/" +
+           fmt(1 / integrator.viscousFraction) + " of the viscous limit for nu = " + fmt(nuAll) +
+           " m^2/s): lower dt or use " + kDefaultIntegrator);
   }
   if (g > 0) {
     const Real force = 0.25 * std::sqrt(h / g);
     out << "    body force     dt / (0.25 sqrt(h / g)) = " << fmt(dt / force) << "\n";
     if (c.cfl == 0 && dt > force) warn("dt is " + fmt(dt / force) + "x the body-force limit " + fmt(force) + " s");
   }
-  if (c.integrator == "euler") warn("integrator euler (explicit Euler) gains energy every step whatever dt: use leap_frog");
+  if (integrator.unstable) warn("integrator " + c.integrator + " " + integrator.unstable + ": use " + kDefaultIntegrator);
 
   // Walls and kernels.
   if (c.walls && (wallTreatment(c) == WallTreatment::kDummy || wallTreatment(c) == WallTreatment::kDynamic)) {
@@ -187,9 +189,11 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       warn("wall_guard = false: the wall particles alone hold the fluid; an isolated splash particle at p <= 0 can "
            "pass them and stop the run (measured: the obstacle dam break at 0.33 s)");
   }
-  if (dx > 0 && composedModel(c) && c.kernel == "cubic_spline" && h / dx >= 1.3)
-    warn("cubic spline at h/dx " + fmt(h / dx) + ": it pairs particles from h/dx 1.3 (measured: 39% paired at 1.3, " +
-         "52-70% from 1.5); wendland_c2 stays clean to 2.0");
+  if (composedModel(c)) {
+    const KernelAdvice& kernel = chosenKernelRow<D>(c).traits;
+    if (dx > 0 && kernel.pairsFrom > 0 && h / dx >= kernel.pairsFrom)
+      warn(std::string(kernel.label) + " at h/dx " + fmt(h / dx) + ": " + kernel.pairing);
+  }
 
   out << "  memory           " << fmt(static_cast<Real>(scene.bytesAllocated()) / (1 << 20)) << " MiB\n";
   // A short timed sample on one thread (a run's threads = auto may do

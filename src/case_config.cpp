@@ -153,15 +153,9 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const ResolvedCase& 
   std::vector<std::pair<std::string, std::string>> unused;
   auto note = [&](const char* key, const std::string& why) { unused.emplace_back(key, why); };
   const bool seed = !composedModel(c);
-  noteUnusedMethodKeys(c, note);  // the keys of eos and viscosity (methods.hpp)
-  if (c.densityReinit == "none")
-    note("density_reinit_every", "density_reinit is none; it applies to density_reinit shepard or mls");
+  noteUnusedMethodKeys(c, note);  // the keys the methods declare (methods.hpp)
   if (seed || c.artificialPressure == 0)
     note("artificial_pressure_n", "artificial_pressure is 0 (off); it applies to artificial_pressure > 0");
-  if (seed || c.surfaceTension == "none")
-    for (const char* key : {"sigma", "surface_threshold", "colour_box_min", "colour_box_max", "colour_ellipse_center",
-                            "colour_ellipse_radii"})
-      note(key, "surface_tension is none; it applies to surface_tension morris, muller or corrected");
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
   if (!wallParticles(c))
     note("wall_guard", "the walls are not particles; it applies to boundary dummy, dynamic or repulsive");
@@ -176,8 +170,6 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const ResolvedCase& 
   if (c.cfl == 0) note("cfl", "cfl = 0 is a fixed time step");
   if (c.paddle == 0)
     for (const char* key : {"paddle_amplitude", "paddle_period"}) note(key, "there is no paddle (paddle = 0)");
-  if (c.shifting != "fickian") note("shifting_coefficient", "shifting is none; it applies to shifting fickian");
-  if (c.initialFlow == "none") note("flow_speed", "initial_flow is none; it applies to initial_flow taylor_green");
   if (c.probePoints.empty() && c.heightProbes.empty() && !c.frontProbe)
     note("probe_interval", "there are no probes (probe_points, height_probes, front_probe)");
   if (c.probePoints.empty())

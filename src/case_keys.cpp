@@ -22,15 +22,14 @@ std::vector<std::string> modelNames() { return methodNames(modelMethods()); }
 std::vector<std::string> boundaryNames() { return methodNames(boundaryMethods()); }
 std::vector<std::string> slipNames() { return {"no_slip", "free_slip"}; }
 std::vector<std::string> densityNames() { return methodNames(densityMethods()); }
-std::vector<std::string> diffusionNames() { return {"fourtakas", "molteni"}; }
-std::vector<std::string> negativePressureNames() { return {"none", "clamp"}; }
+std::vector<std::string> negativePressureNames() { return methodNames(negativePressureMethods()); }
 std::vector<std::string> densityReinitNames() { return methodNames(densityReinitMethods()); }
 std::vector<std::string> gradientCorrectionNames() { return methodNames(gradientCorrectionMethods()); }
-std::vector<std::string> surfaceTensionNames() { return {"none", "morris", "muller", "corrected"}; }
+std::vector<std::string> surfaceTensionNames() { return methodNames(surfaceTensionMethods()); }
 std::vector<std::string> regimeCheckNames() { return {"stop", "warn", "off"}; }
 std::vector<std::string> probeInterpolationNames() { return {"shepard", "plain"}; }
-std::vector<std::string> shiftingNames() { return {"none", "fickian"}; }
-std::vector<std::string> initialFlowNames() { return {"none", "taylor_green"}; }
+std::vector<std::string> shiftingNames() { return methodNames(shiftingMethods()); }
+std::vector<std::string> initialFlowNames() { return methodNames(initialFlowMethods()); }
 
 // The keys the methods of `table` declare, in table order, into `rows`
 // after the row of `chooser`.
@@ -110,8 +109,6 @@ const std::vector<KeySpec>& caseKeys() {
        "Initial velocity and pressure field of the fluid: none, or taylor_green (2D, periodic square box of side L: "
        "u = -U cos(2 pi x/L) sin(2 pi y/L), v = U sin(2 pi x/L) cos(2 pi y/L), p = -rho0 U^2/4 (cos 4 pi x/L + cos 4 pi y/L))",
        {}, nullptr, initialFlowNames},
-      {"flow_speed", G::kScene, &C::flowSpeed, "m/s", "U of the initial flow (initial_flow taylor_green)",
-       within(0, 1e6), nullptr, nullptr},
       {"spacing", G::kScene, &C::spacing, "m", "Lattice spacing dx of blocks and discs", within(0, 1e9), "none",
        nullptr},
       {"velocity", G::kScene, &C::velocity, "m/s", "Initial velocity of generated particles (D values)",
@@ -184,11 +181,6 @@ const std::vector<KeySpec>& caseKeys() {
       {"density", G::kPhysics, &C::density, "",
        "Density: summation (rho = sum m W) or continuity (d rho/dt = sum m v.grad W, integrated)", {}, nullptr,
        densityNames},
-      {"delta", G::kPhysics, &C::delta, "", "Density diffusion coefficient delta (density continuity; 0: off; 0.1 usual)",
-       within(0, 1), nullptr, nullptr},
-      {"diffusion", G::kPhysics, &C::diffusion, "",
-       "Density diffusion: fourtakas (keeps a hydrostatic state; Fourtakas 2019) or molteni (Molteni & Colagrossi 2009)",
-       {}, nullptr, diffusionNames},
       {"hydrostatic_start", G::kPhysics, &C::hydrostaticStart, "",
        "Start the fluid at rest in hydrostatic balance: density from the EOS inverse of rho0 g (H - y), H the top of its block",
        {}, nullptr, nullptr},
@@ -198,8 +190,6 @@ const std::vector<KeySpec>& caseKeys() {
        "Particle shifting each step, dr = -A h U dt grad C, U the largest fluid speed (Lind 2012, Sun 2017): none or fickian; for internal "
        "flows (no shift within a support of a free surface)",
        {}, nullptr, shiftingNames},
-      {"shifting_coefficient", G::kPhysics, &C::shiftingCoefficient, "", "A in the particle shift (shifting fickian)",
-       within(0, 100), nullptr, nullptr},
       {"xsph", G::kPhysics, &C::xsph, "", "XSPH epsilon (model wcsph; 0: off)", within(0, 1), nullptr, nullptr},
       {"damping", G::kPhysics, &C::damping, "1/s", "Linear damping nu in a = -nu v (model wcsph; 0: off)",
        within(0, 1e6), nullptr, nullptr},
@@ -216,22 +206,6 @@ const std::vector<KeySpec>& caseKeys() {
        "the kernel-gradient correction (Bonet & Lok 1999) in grad c and div(n/|n|), the force over the whole band "
        "(two phases; the Laplace jump within 2%)",
        {}, nullptr, surfaceTensionNames},
-      {"sigma", G::kPhysics, &C::sigma, "N/m (3D), N (2D, per unit depth)",
-       "Surface tension coefficient (surface_tension morris, muller or corrected; must be > 0 then)", within(0, 1e9), nullptr, nullptr},
-      {"surface_threshold", G::kPhysics, &C::surfaceThreshold, "",
-       "A reliable normal (curvature, force) where |grad c| > surface_threshold / h (morris, muller, corrected)", within(0, 100),
-       nullptr, nullptr},
-      {"colour_box_min", G::kScene, &C::colourBoxMin, "m",
-       "Surface tension between two phases: fluid particles inside this box start with colour 1, the rest with "
-       "colour 0 (D values; no colour box or ellipse: every fluid particle has colour 1, a free surface)",
-       coordinate(), "none", nullptr},
-      {"colour_box_max", G::kScene, &C::colourBoxMax, "m", "Upper corner of the colour box (D values)", coordinate(),
-       "none", nullptr},
-      {"colour_ellipse_center", G::kScene, &C::colourEllipseCenter, "m",
-       "Two phases: fluid particles inside this ellipse (ellipsoid) start with colour 1 too (D values)", coordinate(),
-       "none", nullptr},
-      {"colour_ellipse_radii", G::kScene, &C::colourEllipseRadii, "m",
-       "Semi-axes of the colour ellipse along x, y[, z] (equal: a circle or sphere)", within(0, 1e9), "none", nullptr},
       // Numerics
       {"integrator", G::kNumerics, &C::integrator, "", "Time integrator", {}, kDefaultIntegrator, integratorNames},
       {"dt", G::kNumerics, &C::dt, "s", "Time step (with cfl > 0: the largest step)", above(0, 1e9), nullptr,
@@ -246,8 +220,6 @@ const std::vector<KeySpec>& caseKeys() {
        "shepard (zeroth order: keeps a constant density) or mls (first order, Colagrossi & Landrieu 2003: keeps "
        "a linear one)",
        {}, nullptr, densityReinitNames},
-      {"density_reinit_every", G::kNumerics, &C::densityReinitEvery, "", "Steps between two density re-initialisations",
-       count(1, 1e9), nullptr, nullptr},
       {"gradient_correction", G::kNumerics, &C::gradientCorrection, "",
        "Kernel gradient correction (model wcsph): none, or cspm (L_i grad W, exact for linear fields, in the "
        "pressure gradient; the continuity sum keeps grad W)",
@@ -317,6 +289,11 @@ const std::vector<KeySpec>& caseKeys() {
     // The parameters of the methods (methods.hpp), after the key that chooses them.
     insertMethodParameters(rows, "eos", eosMethods());
     insertMethodParameters(rows, "viscosity", viscosityMethods());
+    insertMethodParameters(rows, "initial_flow", initialFlowMethods());
+    insertMethodParameters(rows, "density", densityMethods());
+    insertMethodParameters(rows, "shifting", shiftingMethods());
+    insertMethodParameters(rows, "surface_tension", surfaceTensionMethods());
+    insertMethodParameters(rows, "density_reinit", densityReinitMethods());
     return rows;
   }();
   return keys;

@@ -73,37 +73,16 @@ void validateWallsAndDensity(const CaseConfig& c) {
     if (wallTreatment(c) != WallTreatment::kNoParticles)
       throw CaseError("boundary = \"" + c.boundary + "\": model seed_wcsph has the seed's reflecting walls only; "
                       "use model = \"wcsph\"");
-    if (density != DensityTreatment::kSummation || c.hydrostaticStart || c.negativePressure != "none" || !c.obstacleMin.empty())
+    if (density != DensityTreatment::kSummation || c.hydrostaticStart || clampNegativePressure(c) || !c.obstacleMin.empty())
       throw CaseError("density, hydrostatic_start, negative_pressure and obstacles need model = \"wcsph\"; "
                       "model seed_wcsph is the seed scheme exactly");
   }
-  if (seed && (c.densityReinit != "none" || c.gradientCorrection != "none"))
-    throw CaseError("density_reinit and gradient_correction need model = \"wcsph\"; model seed_wcsph is the seed "
-                    "scheme exactly");
-  if (c.densityReinit != "none" && density != DensityTreatment::kContinuity)
-    throw CaseError("density_reinit = \"" + c.densityReinit + "\" needs density = \"continuity\" (summation "
-                    "density is recomputed from the positions at every step)");
   if (c.backgroundPressure != 0 && (seed || !readsKey(chosenEos(c), "background_pressure")))
     throw CaseError("background_pressure = " + significant(c.backgroundPressure) +
                     " needs model = \"wcsph\" with eos = \"linear\" or \"tait\"");
-  if (c.shifting != "none" && (seed || !(c.spacing > 0)))
-    throw CaseError("shifting = \"" + c.shifting + "\" needs model = \"wcsph\" and the lattice spacing (spacing > 0): "
-                    "the shift's tensile term compares W_ij with W(dx)");
-  if (c.initialFlow == "taylor_green") {
-    if (seed || c.dimension != 2 || c.periodic != "xy")
-      throw CaseError("initial_flow = \"taylor_green\" needs model = \"wcsph\", dimension = 2 and periodic = \"xy\" "
-                      "(the vortex array of a periodic square box)");
-    const Real Lx = c.domainMax[0] - c.domainMin[0], Ly = c.domainMax[1] - c.domainMin[1];
-    if (std::abs(Lx - Ly) > 1e-9 * Lx)
-      throw CaseError("initial_flow = \"taylor_green\" needs a square domain: domain_max - domain_min is " + significant(Lx) +
-                      " x " + significant(Ly) + " m");
-  }
   if (wallTreatment(c) == WallTreatment::kDynamic && density != DensityTreatment::kContinuity)
     throw CaseError("boundary = \"dynamic\" needs density = \"continuity\" (dynamic wall particles carry a "
                     "density by the continuity equation)");
-  if (c.delta > 0 && density != DensityTreatment::kContinuity)
-    throw CaseError("delta = " + std::to_string(c.delta) + " needs density = \"continuity\" (density diffusion "
-                    "acts on the continuity equation)");
   if ((particleWalls || !c.obstacleMin.empty()) && !(c.spacing > 0))
     throw CaseError("boundary = \"" + c.boundary + "\" builds wall particles on the fluid lattice: give spacing (> 0)");
   if (!c.obstacleMin.empty() && !particleWalls)
@@ -162,15 +141,10 @@ void validateWallsAndDensity(const CaseConfig& c) {
 }
 
 void validateTension(const CaseConfig& c) {
-  const bool seed = !composedModel(c);
-  if (seed && (c.artificialPressure != 0 || c.surfaceTension != "none"))
-    throw CaseError("artificial_pressure and surface_tension need model = \"wcsph\"; model seed_wcsph is the seed "
-                    "scheme exactly");
+  if (!composedModel(c) && c.artificialPressure != 0) requireComposedForTension(c);
   if (c.artificialPressure > 0 && !(c.spacing > 0))
     throw CaseError("artificial_pressure = " + std::to_string(c.artificialPressure) +
                     " needs spacing (> 0): its f_ij = W(r_ij)/W(dx) is relative to the particle spacing dx");
-  if (c.surfaceTension != "none" && !(c.sigma > 0))
-    throw CaseError("surface_tension = \"" + c.surfaceTension + "\" needs sigma > 0 (N/m in 3D, N per unit depth in 2D)");
   const std::size_t D = static_cast<std::size_t>(c.dimension);
   if (c.colourBoxMin.size() != c.colourBoxMax.size() || (!c.colourBoxMin.empty() && c.colourBoxMin.size() != D))
     throw CaseError("colour_box_min and colour_box_max need " + std::to_string(D) +

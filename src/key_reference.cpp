@@ -85,8 +85,13 @@ std::string keyReferenceMarkdown() {
   text += methodTable("viscosity", viscosityMethods());
   text += methodTable("boundary", boundaryMethods());
   text += methodTable("density", densityMethods());
+  text += methodTable("diffusion", diffusionMethods());
+  text += methodTable("negative_pressure", negativePressureMethods());
   text += methodTable("density_reinit", densityReinitMethods());
   text += methodTable("gradient_correction", gradientCorrectionMethods());
+  text += methodTable("surface_tension", surfaceTensionMethods());
+  text += methodTable("shifting", shiftingMethods());
+  text += methodTable("initial_flow", initialFlowMethods());
   text += methodTable("integrator", integratorMethods<2>());
   return text;
 }

@@ -356,10 +356,10 @@ InitialState<D> buildInitialState(const ResolvedCase& c) {
   std::copy(file.wallRho.begin(), file.wallRho.end(), P.rho.begin() + static_cast<std::ptrdiff_t>(nFluid));
   // Colour of the surface-tension phase: 1 inside the colour box or the
   // colour ellipse (everywhere when neither is given), 0 outside and for walls.
-  if (wcsph && c.surfaceTension != "none" && !file.fluidColour.empty()) {
+  if (wcsph && surfaceTensionCurvature(c) && !file.fluidColour.empty()) {
     P.colour.assign(P.size(), 0);
     std::copy(file.fluidColour.begin(), file.fluidColour.end(), P.colour.begin());
-  } else if (wcsph && c.surfaceTension != "none") {
+  } else if (wcsph && surfaceTensionCurvature(c)) {
     P.colour.assign(P.size(), 0);
     const bool box = !c.colourBoxMin.empty(), ellipse = !c.colourEllipseCenter.empty();
     for (std::size_t i = 0; i < nFluid; ++i) {
@@ -386,7 +386,7 @@ InitialState<D> buildInitialState(const ResolvedCase& c) {
       if (i < nFluid || !dummyWalls) P.m[i] *= P.rho[i] / c.rho0;
     }
   }
-  if (wcsph && c.initialFlow == "taylor_green") addTaylorGreenFlow(P, c);
+  if (wcsph && initialFlow(c) == InitialFlow::kTaylorGreen) addTaylorGreenFlow(P, c);
   return s;
 }
 

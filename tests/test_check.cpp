@@ -5,8 +5,12 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <initializer_list>
+#include <sstream>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -56,6 +60,38 @@ BOOST_AUTO_TEST_CASE(each_concern_is_warned_about) {
                            "cubic spline at h/dx 1.5", "fewer wall layers"})
     BOOST_TEST(r.output.find(what) != std::string::npos, "missing: " << what);
   BOOST_TEST(r.output.find("5 warnings") != std::string::npos);
+}
+
+// The acoustic limits sph check states are declared by the kernel rows
+// (methods.hpp, measured with sph at h/dx 1.3) for an integrator class:
+// they agree within 2% with the linear stability analysis of
+// tests/reference/acoustic_cfl_limits.csv (2D, h/dx 1.3; leap-frog and
+// symplectic Euler stable while omega dt <= 2, RK4 while <= 2 sqrt 2). 2%:
+// the measured limits are where a run blew up, on a 0.01-0.05 grid of c0 dt/h.
+BOOST_AUTO_TEST_CASE(declared_acoustic_limits_match_the_stability_analysis) {
+  std::ifstream in(std::string(SPH_SOURCE_DIR) + "/tests/reference/acoustic_cfl_limits.csv");
+  BOOST_REQUIRE(in.good());
+  std::string line;
+  int checked = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("kernel,", 0) == 0) continue;
+    std::vector<std::string> cell;
+    std::stringstream row(line);
+    for (std::string x; std::getline(row, x, ',');) cell.push_back(x);
+    std::string kernel = cell[0];
+    for (char& ch : kernel) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (cell[1] != "2" || cell[2] != "1.3" || !findMethod(kernelMethods<2>(), kernel)) continue;
+    CaseConfig c = test::bareWcsph(2);
+    c.kernel = kernel;
+    for (const auto& [integrator, column] : {std::pair<const char*, int>{"leap_frog", 4}, {"symplectic_euler", 4},
+                                             {"rk4", 5}}) {
+      c.integrator = integrator;
+      const Real reference = std::stod(cell[static_cast<std::size_t>(column)]);
+      BOOST_TEST(acousticLimit<2>(c) == reference, boost::test_tools::tolerance(0.02));
+      ++checked;
+    }
+  }
+  BOOST_TEST(checked == 6);  // cubic_spline and wendland_c2
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_exits_2_naming_it) {

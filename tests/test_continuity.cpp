@@ -44,6 +44,30 @@ BOOST_AUTO_TEST_SUITE(continuity)
 // derivative at t = 0 is sum_j m_j (v_i - v_j) . grad_i W_ij exactly. A
 // central difference with step 1e-6 s agrees to O(eps^2) plus round-off:
 // 1e-6 of the largest rate.
+// The diffusion term derives its constants from the chosen form (Molteni &
+// Colagrossi 2009 eq. 9; Fourtakas et al. 2019): 2 delta h c0, eta^2 =
+// 0.01 h^2, and rho0 g / c0^2 for the hydrostatic part. Worked by hand:
+// delta 0.1, h 0.02 m, c0 40 m/s -> 0.16 m^2/s; eta^2 4e-6 m^2; rho0 1000,
+// g -9.81 -> -6.13125 kg/m^4. The model's term is the same one.
+BOOST_AUTO_TEST_CASE(diffusion_derives_its_coefficient) {
+  const Vec<2> g(0, -9.81);
+  const auto fourtakas = DensityDiffusion<2>::build({0.1, true, "x"}, 0.02, 40, 1000, g);
+  BOOST_TEST(fourtakas.coefficient == 0.16, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(fourtakas.eta2 == 4e-6, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(fourtakas.hydrostatic[1] == -6.13125, boost::test_tools::tolerance(1e-12));
+  const auto molteni = DensityDiffusion<2>::build({0.1, false, "x"}, 0.02, 40, 1000, g);
+  BOOST_TEST(molteni.hydrostatic.isZero());
+  BOOST_TEST(!DensityDiffusion<2>::build({0, true, "x"}, 0.02, 40, 1000, g).active());
+  // Through the registry: the case's diffusion key picks the form.
+  CaseConfig c = block("continuity");
+  c.delta = 0.1;
+  c.diffusion = "molteni";
+  BOOST_TEST(!densityDiffusion(c).hydrostatic);
+  BOOST_TEST(densityDiffusion(c).delta == 0.1);
+  c.diffusion = "fourtakas";
+  BOOST_TEST(densityDiffusion(c).hydrostatic);
+}
+
 BOOST_AUTO_TEST_CASE(rate_equals_the_derivative_of_summation_density) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<Real> jitter(-0.002, 0.002);

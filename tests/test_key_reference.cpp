@@ -8,6 +8,7 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -82,8 +83,18 @@ BOOST_AUTO_TEST_CASE(every_key_is_declared_once_by_the_table_or_a_method) {
         BOOST_TEST(sph::readsKey(method, k.name), method.name << " declares " << k.name << " but does not read it");
       }
   };
+  declared(sph::kernelMethods<2>());
   declared(sph::eosMethods());
   declared(sph::viscosityMethods());
+  declared(sph::integratorMethods<2>());
+  declared(sph::densityMethods());
+  declared(sph::diffusionMethods());
+  declared(sph::negativePressureMethods());
+  declared(sph::densityReinitMethods());
+  declared(sph::gradientCorrectionMethods());
+  declared(sph::surfaceTensionMethods());
+  declared(sph::shiftingMethods());
+  declared(sph::initialFlowMethods());
   // The notes name the chosen method and the methods that read the key.
   sph::CaseConfig c = sph::test::bareWcsph(2);
   c.viscosity = "morris";
@@ -95,6 +106,56 @@ BOOST_AUTO_TEST_CASE(every_key_is_declared_once_by_the_table_or_a_method) {
       "key 'polytropic_index' is not used: eos is tait; it applies to eos polytropic",
       "key 'alpha' is not used: viscosity is morris; it applies to viscosity monaghan"};
   BOOST_TEST(notes == expected, boost::test_tools::per_element());
+  // The density, surface-tension and shifting families declare theirs too.
+  sph::CaseConfig d = sph::test::bareWcsph(2);
+  d.given = {"delta", "diffusion", "sigma", "density_reinit_every", "shifting_coefficient", "flow_speed"};
+  const std::vector<std::string> densityNotes = sph::unusedKeyNotes(sph::withDefaults(d));
+  const std::vector<std::string> densityExpected = {
+      "key 'delta' is not used: density is summation; it applies to density continuity",
+      "key 'diffusion' is not used: density is summation; it applies to density continuity",
+      "key 'density_reinit_every' is not used: density_reinit is none; it applies to density_reinit shepard or mls",
+      "key 'sigma' is not used: surface_tension is none; it applies to surface_tension morris, muller or corrected",
+      "key 'shifting_coefficient' is not used: shifting is none; it applies to shifting fickian",
+      "key 'flow_speed' is not used: initial_flow is none; it applies to initial_flow taylor_green"};
+  BOOST_TEST(densityNotes == densityExpected, boost::test_tools::per_element());
+}
+
+// No method name is compared as a string outside the registry: no source
+// file but methods.hpp holds `<field> == "` or `<field> != "` for a
+// CaseConfig field whose key chooses from a method table (the field's name
+// is the key in camelCase). wall_slip is the boundary object's (issue 18,
+// done with the boundaries).
+BOOST_AUTO_TEST_CASE(no_method_name_is_compared_outside_the_registry) {
+  const auto camel = [](const std::string& key) {
+    std::string name;
+    bool up = false;
+    for (char ch : key) {
+      if (ch == '_') up = true;
+      else name += up ? static_cast<char>(ch - 'a' + 'A') : ch, up = false;
+    }
+    return name;
+  };
+  std::vector<std::string> fields;
+  for (const sph::KeySpec& k : sph::caseKeys())
+    if (k.choices && std::string(k.name) != "wall_slip" && std::string(k.name) != "regime_check" &&
+        std::string(k.name) != "probe_interpolation")
+      fields.push_back(camel(k.name));
+  BOOST_TEST(fields.size() >= 14u);
+  namespace fs = std::filesystem;
+  int files = 0;
+  for (const char* dir : {"include", "src"})
+    for (const auto& entry : fs::recursive_directory_iterator(fs::path(SPH_SOURCE_DIR) / dir)) {
+      if (!entry.is_regular_file() || entry.path().filename() == "methods.hpp") continue;
+      const std::string text = readText(entry.path().string());
+      ++files;
+      for (const std::string& f : fields)
+        for (const char* op : {" == \"", " != \""}) {
+          const std::string needle = "." + f + op;
+          BOOST_TEST(text.find(needle) == std::string::npos,
+                     entry.path().string() << " compares " << f << " with a name: ask the registry (methods.hpp)");
+        }
+    }
+  BOOST_TEST(files > 50);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

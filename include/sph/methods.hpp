@@ -5,7 +5,8 @@
 // all read these tables; a method's name is written here and nowhere else.
 //
 // A row whose builder returns nothing is a choice that builds no object
-// (viscosity "none").
+// (viscosity "none"). A family may declare more of its rows (Traits): what
+// `sph check` advises from (kernels, integrators, viscosities).
 #pragma once
 
 #include "sph/case_config.hpp"
@@ -19,6 +20,7 @@
 #include "sph/terms/equation_of_state.hpp"
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -54,7 +56,29 @@ struct MethodKeys {
   auto end() const { return rows.end(); }
 };
 
-template <class T>
+struct NoTraits {};
+
+// Whether a case's model is composed from named methods (below).
+inline bool composedModel(const CaseConfig& c);
+
+// The row called `name` of a table whose key names it (checkKeyRanges has
+// refused unknown names), or a CaseError naming the key.
+template <class Table>
+const typename Table::value_type& methodRow(const Table& table, const char* key, const std::string& name) {
+  for (const auto& row : table)
+    if (name == row.name) return row;
+  throw CaseError(std::string(key) + " = \"" + name + "\" is not known");
+}
+
+// The names of a table, in order.
+template <class Table>
+std::vector<std::string> methodNames(const Table& table) {
+  std::vector<std::string> names;
+  for (const auto& row : table) names.push_back(row.name);
+  return names;
+}
+
+template <class T, class Traits = NoTraits>
 struct Method {
   const char* name;
   const char* summary;
@@ -62,6 +86,34 @@ struct Method {
   T (*make)(const CaseConfig&);
   MethodKeys params = MethodKeys();
   void (*validate)(const CaseConfig&) = nullptr;
+  Traits traits = {};
+};
+
+// What `sph check` says of a kernel, measured with sph by the stability
+// atlas at h/dx 1.3 (docs/stability-atlas.md, validation/stability_atlas.py
+// against tests/reference/acoustic_cfl_limits.csv): the c0 dt / h from which
+// waves grow, per integrator class (integrator_support.hpp), and the h/dx
+// from which it pairs particles (0: not seen to 2.0).
+struct KernelAdvice {
+  Real acousticLimit[kAcousticClasses];
+  Real pairsFrom = 0;
+  const char* pairing = nullptr;  // the warning's text past "<label> at h/dx X: "
+  const char* label = "";
+};
+
+// An integrator's advice, from its type (integrators/*.hpp): its class of
+// acoustic limits, why it is unstable at every dt (nullptr: it is not), and
+// the fraction of the viscous limit it is stable to (1: the usual limit).
+struct IntegratorAdvice {
+  AcousticClass acoustic = AcousticClass::kLeapFrog;
+  const char* unstable = nullptr;
+  Real viscousFraction = 1;
+};
+
+// A viscosity's advice: the kinematic viscosity of an artificial viscosity
+// in terms of h and c0 (nullptr: none beyond Model::kinematicViscosity()).
+struct ViscosityAdvice {
+  Real (*artificialNu)(const CaseConfig&, Real h, Real c0) = nullptr;
 };
 
 // Whether a row (a method or a model) reads `key`.
@@ -72,17 +124,24 @@ bool readsKey(const Row& row, const std::string& key) {
   return false;
 }
 
+// The acoustic limits of the Gaussian and Mueller kernels were not
+// measured: sph check uses the cubic spline's for them.
 template <int D>
-const std::vector<Method<Kernel<D>>>& kernelMethods() {
-  static const std::vector<Method<Kernel<D>>> m = {
+const std::vector<Method<Kernel<D>, KernelAdvice>>& kernelMethods() {
+  static const KernelAdvice cubic{{1.88, 2.67, 0.89}, 1.3,
+                                  "it pairs particles from h/dx 1.3 (measured: 39% paired at 1.3, 52-70% from 1.5); "
+                                  "wendland_c2 stays clean to 2.0",
+                                  "cubic spline"};
+  static const KernelAdvice unmeasured{{1.88, 2.67, 0.89}};
+  static const std::vector<Method<Kernel<D>, KernelAdvice>> m = {
       {"cubic_spline", "M4 cubic B-spline, support 2h (Monaghan & Lattanzio 1985)", {"h"},
-       [](const CaseConfig& c) -> Kernel<D> { return CubicSpline<D>(c.h); }},
+       [](const CaseConfig& c) -> Kernel<D> { return CubicSpline<D>(c.h); }, {}, nullptr, cubic},
       {"wendland_c2", "Wendland C2, support 2h (Wendland 1995; as in DualSPHysics)", {"h"},
-       [](const CaseConfig& c) -> Kernel<D> { return WendlandC2<D>(c.h); }},
+       [](const CaseConfig& c) -> Kernel<D> { return WendlandC2<D>(c.h); }, {}, nullptr, KernelAdvice{{1.81, 2.56, 0.86}}},
       {"gaussian", "Gaussian truncated at 3h and renormalised", {"h"},
-       [](const CaseConfig& c) -> Kernel<D> { return Gaussian<D>(c.h); }},
+       [](const CaseConfig& c) -> Kernel<D> { return Gaussian<D>(c.h); }, {}, nullptr, unmeasured},
       {"muller", "Mueller, Charypar & Gross 2003 set, support h: poly6 density, spiky gradient, viscosity Laplacian",
-       {"h"}, [](const CaseConfig& c) -> Kernel<D> { return Muller<D>(c.h); }},
+       {"h"}, [](const CaseConfig& c) -> Kernel<D> { return Muller<D>(c.h); }, {}, nullptr, unmeasured},
   };
   return m;
 }
@@ -120,9 +179,9 @@ inline const std::vector<Method<EquationOfState>>& eosMethods() {
   return m;
 }
 
-inline const std::vector<Method<ViscosityChoice>>& viscosityMethods() {
+inline const std::vector<Method<ViscosityChoice, ViscosityAdvice>>& viscosityMethods() {
   using key_range::within;
-  static const std::vector<Method<ViscosityChoice>> m = {
+  static const std::vector<Method<ViscosityChoice, ViscosityAdvice>> m = {
       {"laplacian",
        "mu sum m_j (v_j - v_i)/(rho_i rho_j) lap W (Mueller's viscosity kernel, or -2 W'/r: Brookshaw 1985)", {"mu"},
        [](const CaseConfig& c) -> ViscosityChoice {
@@ -139,7 +198,10 @@ inline const std::vector<Method<ViscosityChoice>>& viscosityMethods() {
        {{"alpha", KeyGroup::kPhysics, &CaseConfig::alpha, "", "Monaghan viscosity alpha (viscosity monaghan)", within(0, 100),
        nullptr, nullptr},
         {"beta", KeyGroup::kPhysics, &CaseConfig::beta, "", "Monaghan viscosity beta (viscosity monaghan)", within(0, 100), nullptr,
-       nullptr}}},
+       nullptr}},
+       nullptr,
+       // nu = alpha h c0 / 8 (Monaghan 2005, sec. 4.1)
+       {[](const CaseConfig& c, Real h, Real c0) -> Real { return c.alpha * h * c0 / 8; }}},
       {"morris",
        "laminar viscosity, kinematic viscosity nu: sum m_j (mu_i+mu_j)/(rho_i rho_j) r.gradW/(r^2+0.01h^2) v_ij "
        "(Morris, Fox & Zhu 1997, eq. 8)",
@@ -158,12 +220,13 @@ inline const std::vector<Method<ViscosityChoice>>& viscosityMethods() {
 // Integrators are types (integrators.hpp): their rows come from the types'
 // own name and summary, and each row builds its alternative.
 template <int D>
-const std::vector<Method<Integrator<D>>>& integratorMethods() {
-  static const std::vector<Method<Integrator<D>>> m = [] {
-    std::vector<Method<Integrator<D>>> rows;
+const std::vector<Method<Integrator<D>, IntegratorAdvice>>& integratorMethods() {
+  static const std::vector<Method<Integrator<D>, IntegratorAdvice>> m = [] {
+    std::vector<Method<Integrator<D>, IntegratorAdvice>> rows;
     forEachAlternative<Integrator<D>>([&](auto type) {
       using T = typename decltype(type)::type;
-      rows.push_back({T::name, T::summary, {}, [](const CaseConfig&) -> Integrator<D> { return T{}; }});
+      rows.push_back({T::name, T::summary, {}, [](const CaseConfig&) -> Integrator<D> { return T{}; }, {}, nullptr,
+                      IntegratorAdvice{T::kAcousticClass, T::kUnstable, T::kViscousFraction}});
     });
     return rows;
   }();
@@ -188,25 +251,66 @@ inline const std::vector<Method<WallTreatment>>& boundaryMethods() {
   return m;
 }
 
+// Density diffusion (terms/density_diffusion.hpp): the form of the delta-SPH
+// term of the continuity equation.
+inline const std::vector<Method<DensityDiffusionChoice>>& diffusionMethods() {
+  static const std::vector<Method<DensityDiffusionChoice>> m = {
+      {"fourtakas", "psi_ij less its hydrostatic part: keeps a fluid at rest in hydrostatic balance (Fourtakas et al. 2019)",
+       {"delta"}, [](const CaseConfig& c) { return DensityDiffusionChoice{c.delta, true, "density_diffusion_fourtakas"}; }},
+      {"molteni", "psi_ij = rho_j - rho_i (Molteni & Colagrossi 2009)", {"delta"},
+       [](const CaseConfig& c) { return DensityDiffusionChoice{c.delta, false, "density_diffusion_molteni"}; }},
+  };
+  return m;
+}
+
 inline const std::vector<Method<DensityTreatment>>& densityMethods() {
+  using key_range::within;
   static const std::vector<Method<DensityTreatment>> m = {
       {"summation", "rho_i = sum_j m_j W_ij, self term included", {},
-       [](const CaseConfig&) { return DensityTreatment::kSummation; }},
+       [](const CaseConfig&) { return DensityTreatment::kSummation; }, {},
+       [](const CaseConfig& c) {
+         if (c.delta > 0)
+           throw CaseError("delta = " + std::to_string(c.delta) + " needs density = \"continuity\" (density diffusion "
+                           "acts on the continuity equation)");
+       }},
       {"continuity", "d rho_i/dt = sum_j m_j v_ij . grad W_ij, integrated, with density diffusion (delta)",
-       {"delta", "diffusion"}, [](const CaseConfig&) { return DensityTreatment::kContinuity; }},
+       {"delta", "diffusion"}, [](const CaseConfig&) { return DensityTreatment::kContinuity; },
+       {{"delta", KeyGroup::kPhysics, &CaseConfig::delta, "",
+         "Density diffusion coefficient delta (density continuity; 0: off; 0.1 usual)", within(0, 1), nullptr, nullptr},
+        {"diffusion", KeyGroup::kPhysics, &CaseConfig::diffusion, "",
+         "Density diffusion: fourtakas (keeps a hydrostatic state; Fourtakas 2019) or molteni (Molteni & Colagrossi 2009)",
+         {}, nullptr, [] { return methodNames(diffusionMethods()); }}}},
   };
   return m;
 }
 
 // Kernel corrections (seed document 004). Density re-initialisation every
 // density_reinit_every steps, and the gradient correction.
+// The kernel corrections need a composed model (the seed's scheme is fixed).
+inline void requireComposedForCorrections(const CaseConfig& c) {
+  if (!composedModel(c))
+    throw CaseError("density_reinit and gradient_correction need model = \"wcsph\"; model seed_wcsph is the seed "
+                    "scheme exactly");
+}
+
 inline const std::vector<Method<DensityReinit>>& densityReinitMethods() {
+  using key_range::count;
+  // A re-initialisation resets the integrated density: it needs one.
+  static const auto rules = [](const CaseConfig& c) {
+    requireComposedForCorrections(c);
+    if (methodRow(densityMethods(), "density", c.density).make(c) != DensityTreatment::kContinuity)
+      throw CaseError("density_reinit = \"" + c.densityReinit + "\" needs density = \"continuity\" (summation "
+                      "density is recomputed from the positions at every step)");
+  };
   static const std::vector<Method<DensityReinit>> m = {
       {"none", "no re-initialisation", {}, [](const CaseConfig&) { return DensityReinit::kNone; }},
       {"shepard", "rho_i = sum m_j W_ij / sum (m_j/rho_j) W_ij: zeroth order (Shepard 1968)",
-       {"density_reinit_every"}, [](const CaseConfig&) { return DensityReinit::kShepard; }},
+       {"density_reinit_every"}, [](const CaseConfig&) { return DensityReinit::kShepard; },
+       {{"density_reinit_every", KeyGroup::kNumerics, &CaseConfig::densityReinitEvery, "",
+         "Steps between two density re-initialisations", count(1, 1e9), nullptr, nullptr}},
+       rules},
       {"mls", "rho_i = sum m_j W^MLS_ij, the first-order moving-least-squares kernel (Colagrossi & Landrieu 2003)",
-       {"density_reinit_every"}, [](const CaseConfig&) { return DensityReinit::kMls; }},
+       {"density_reinit_every"}, [](const CaseConfig&) { return DensityReinit::kMls; }, {}, rules},
   };
   return m;
 }
@@ -216,7 +320,107 @@ inline const std::vector<Method<bool>>& gradientCorrectionMethods() {
       {"none", "grad W as it is", {}, [](const CaseConfig&) { return false; }},
       {"cspm", "L_i grad W with L_i = [sum V_k (x_k - x_i) (x) grad W_ik]^-1 in the pressure gradient "
                "(Chen, Beraun & Carney 1999; Bonet & Lok 1999)",
-       {}, [](const CaseConfig&) { return true; }},
+       {}, [](const CaseConfig&) { return true; }, {}, [](const CaseConfig& c) { requireComposedForCorrections(c); }},
+  };
+  return m;
+}
+
+// Negative pressures (negative_pressure key): kept, or clamped to 0 by the
+// EOS passes. Builds whether they are clamped.
+inline const std::vector<Method<bool>>& negativePressureMethods() {
+  static const std::vector<Method<bool>> m = {
+      {"none", "negative pressures are kept", {}, [](const CaseConfig&) { return false; }},
+      {"clamp", "p = max(0, p) after the EOS", {}, [](const CaseConfig&) { return true; }},
+  };
+  return m;
+}
+
+// Colour-field surface tension (terms/colour_surface_tension.hpp): the
+// curvature method, none for no surface tension.
+inline void requireComposedForTension(const CaseConfig& c) {
+  if (!composedModel(c))
+    throw CaseError("artificial_pressure and surface_tension need model = \"wcsph\"; model seed_wcsph is the seed "
+                    "scheme exactly");
+}
+inline const std::vector<Method<std::optional<CurvatureMethod>>>& surfaceTensionMethods() {
+  using key_range::coordinate;
+  using key_range::within;
+  static const std::vector<const char*> keys = {"sigma", "surface_threshold", "colour_box_min", "colour_box_max",
+                                                "colour_ellipse_center", "colour_ellipse_radii"};
+  static const auto rules = [](const CaseConfig& c) {
+    requireComposedForTension(c);
+    if (!(c.sigma > 0))
+      throw CaseError("surface_tension = \"" + c.surfaceTension + "\" needs sigma > 0 (N/m in 3D, N per unit depth in 2D)");
+  };
+  using Curvature = std::optional<CurvatureMethod>;
+  static const std::vector<Method<Curvature>> m = {
+      {"none", "no surface tension", {}, [](const CaseConfig&) -> Curvature { return std::nullopt; }},
+      {"morris", "kappa = -div(n/|n|) (Morris 2000)", keys,
+       [](const CaseConfig&) -> Curvature { return CurvatureMethod::kMorris; },
+       {{"sigma", KeyGroup::kPhysics, &CaseConfig::sigma, "N/m (3D), N (2D, per unit depth)",
+         "Surface tension coefficient (surface_tension morris, muller or corrected; must be > 0 then)", within(0, 1e9),
+         nullptr, nullptr},
+        {"surface_threshold", KeyGroup::kPhysics, &CaseConfig::surfaceThreshold, "",
+         "A reliable normal (curvature, force) where |grad c| > surface_threshold / h (morris, muller, corrected)",
+         within(0, 100), nullptr, nullptr},
+        {"colour_box_min", KeyGroup::kScene, &CaseConfig::colourBoxMin, "m",
+         "Surface tension between two phases: fluid particles inside this box start with colour 1, the rest with "
+         "colour 0 (D values; no colour box or ellipse: every fluid particle has colour 1, a free surface)",
+         coordinate(), "none", nullptr},
+        {"colour_box_max", KeyGroup::kScene, &CaseConfig::colourBoxMax, "m", "Upper corner of the colour box (D values)",
+         coordinate(), "none", nullptr},
+        {"colour_ellipse_center", KeyGroup::kScene, &CaseConfig::colourEllipseCenter, "m",
+         "Two phases: fluid particles inside this ellipse (ellipsoid) start with colour 1 too (D values)", coordinate(),
+         "none", nullptr},
+        {"colour_ellipse_radii", KeyGroup::kScene, &CaseConfig::colourEllipseRadii, "m",
+         "Semi-axes of the colour ellipse along x, y[, z] (equal: a circle or sphere)", within(0, 1e9), "none",
+         nullptr}},
+       rules},
+      {"muller", "kappa = -lap c/|n|, f = -sigma lap c n/|n| (Mueller, Charypar & Gross 2003)", keys,
+       [](const CaseConfig&) -> Curvature { return CurvatureMethod::kMuller; }, {}, rules},
+      {"corrected", "morris with the kernel-gradient correction (Bonet & Lok 1999) in grad c and div(n/|n|)", keys,
+       [](const CaseConfig&) -> Curvature { return CurvatureMethod::kCorrected; }, {}, rules},
+  };
+  return m;
+}
+
+// Particle shifting (particle_shifting.hpp): whether the scene shifts.
+inline const std::vector<Method<bool>>& shiftingMethods() {
+  using key_range::within;
+  static const std::vector<Method<bool>> m = {
+      {"none", "no shifting", {}, [](const CaseConfig&) { return false; }},
+      {"fickian", "dr = -A h U dt grad C (Lind et al. 2012; Sun et al. 2017)", {"shifting_coefficient", "spacing"},
+       [](const CaseConfig&) { return true; },
+       {{"shifting_coefficient", KeyGroup::kPhysics, &CaseConfig::shiftingCoefficient, "",
+         "A in the particle shift (shifting fickian)", within(0, 100), nullptr, nullptr}},
+       [](const CaseConfig& c) {
+         if (!composedModel(c) || !(c.spacing > 0))
+           throw CaseError("shifting = \"" + c.shifting + "\" needs model = \"wcsph\" and the lattice spacing "
+                           "(spacing > 0): the shift's tensile term compares W_ij with W(dx)");
+       }},
+  };
+  return m;
+}
+
+// The initial flow field of the fluid (particle_sources.cpp).
+enum class InitialFlow { kNone, kTaylorGreen };
+inline const std::vector<Method<InitialFlow>>& initialFlowMethods() {
+  using key_range::within;
+  static const std::vector<Method<InitialFlow>> m = {
+      {"none", "the particles' own velocities", {}, [](const CaseConfig&) { return InitialFlow::kNone; }},
+      {"taylor_green", "the Taylor-Green vortex array of a periodic square box (2D)", {"flow_speed"},
+       [](const CaseConfig&) { return InitialFlow::kTaylorGreen; },
+       {{"flow_speed", KeyGroup::kScene, &CaseConfig::flowSpeed, "m/s", "U of the initial flow (initial_flow taylor_green)",
+         within(0, 1e6), nullptr, nullptr}},
+       [](const CaseConfig& c) {
+         if (!composedModel(c) || c.dimension != 2 || c.periodic != "xy")
+           throw CaseError("initial_flow = \"taylor_green\" needs model = \"wcsph\", dimension = 2 and periodic = \"xy\" "
+                           "(the vortex array of a periodic square box)");
+         const Real Lx = c.domainMax[0] - c.domainMin[0], Ly = c.domainMax[1] - c.domainMin[1];
+         if (std::abs(Lx - Ly) > 1e-9 * Lx)
+           throw CaseError("initial_flow = \"taylor_green\" needs a square domain: domain_max - domain_min is " +
+                           significant(Lx) + " x " + significant(Ly) + " m");
+       }},
   };
   return m;
 }
@@ -240,15 +444,6 @@ inline const std::vector<ModelRow>& modelMethods() {
   return m;
 }
 
-// The row called `name` of a table whose key names it (checkKeyRanges has
-// refused unknown names), or a CaseError naming the key.
-template <class Table>
-const typename Table::value_type& methodRow(const Table& table, const char* key, const std::string& name) {
-  for (const auto& row : table)
-    if (name == row.name) return row;
-  throw CaseError(std::string(key) + " = \"" + name + "\" is not known");
-}
-
 // The case's model row, and whether it is composed from named methods.
 inline const ModelRow& modelOf(const CaseConfig& c) { return methodRow(modelMethods(), "model", c.model); }
 inline bool composedModel(const CaseConfig& c) { return modelOf(c).composed; }
@@ -265,14 +460,45 @@ inline const Method<EquationOfState>& chosenEos(const CaseConfig& c) {
   return methodRow(eosMethods(), "eos", c.eos.empty() ? kDefaultEos : c.eos);
 }
 
-// The combination rules of the methods a composed case chooses.
+// The viscosity row a (raw or resolved) composed case uses.
+inline const Method<ViscosityChoice, ViscosityAdvice>& chosenViscosity(const CaseConfig& c) {
+  return methodRow(viscosityMethods(), "viscosity", c.viscosity.empty() ? kDefaultViscosity : c.viscosity);
+}
+
+// The kernel and integrator rows a (raw or resolved) case uses.
+template <int D>
+const Method<Kernel<D>, KernelAdvice>& chosenKernelRow(const CaseConfig& c) {
+  return methodRow(kernelMethods<D>(), "kernel", c.kernel.empty() ? kDefaultKernel : c.kernel);
+}
+template <int D>
+const Method<Integrator<D>, IntegratorAdvice>& chosenIntegratorRow(const CaseConfig& c) {
+  return methodRow(integratorMethods<D>(), "integrator", c.integrator.empty() ? kDefaultIntegrator : c.integrator);
+}
+
+// The families every model has, with the key that chooses in each (the
+// seed model's choices are their defaults; their rules refuse the rest).
+template <class F>
+void forEachSharedFamily(const CaseConfig& c, F&& f) {
+  f(densityMethods(), "density", c.density);
+  f(densityReinitMethods(), "density_reinit", c.densityReinit);
+  f(gradientCorrectionMethods(), "gradient_correction", c.gradientCorrection);
+  f(surfaceTensionMethods(), "surface_tension", c.surfaceTension);
+  f(shiftingMethods(), "shifting", c.shifting);
+  f(initialFlowMethods(), "initial_flow", c.initialFlow);
+  f(negativePressureMethods(), "negative_pressure", c.negativePressure);
+}
+
+// The combination rules of the methods a case chooses.
 inline void validateChosenMethods(const CaseConfig& c) {
-  if (!composedModel(c)) return;
   const auto check = [&](const auto& row) {
     if (row.validate) row.validate(c);
   };
+  forEachSharedFamily(c, [&](const auto& table, const char* key, const std::string& chosen) {
+    check(methodRow(table, key, chosen));
+  });
+  if (!composedModel(c)) return;
   check(chosenEos(c));
-  check(methodRow(viscosityMethods(), "viscosity", c.viscosity.empty() ? kDefaultViscosity : c.viscosity));
+  check(chosenViscosity(c));
 }
 
 // The unused-key notes of a family under a composed model: each key its
@@ -284,18 +510,25 @@ void noteUnreadParameters(const Table& table, const char* family, const std::str
   for (const auto& method : table)
     for (const KeySpec& key : method.params) {
       if (readsKey(row, key.name)) continue;
-      std::string owners;
+      std::vector<std::string> names;
       for (const auto& m : table)
-        if (readsKey(m, key.name)) owners += (owners.empty() ? "" : " or ") + std::string(m.name);
+        if (readsKey(m, key.name)) names.push_back(m.name);
+      std::string owners;  // "a", "a or b", "a, b or c"
+      for (std::size_t i = 0; i < names.size(); ++i)
+        owners += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
       note(key.name, std::string(family) + " is " + chosen + "; it applies to " + family + " " + owners);
     }
 }
 
-// The unused-key notes of the method families (eos, viscosity): under a
-// fixed scheme every key they declare that the model does not read, else
-// those the chosen methods do not read.
+// The unused-key notes of the method families: the keys each family's
+// methods declare that its chosen method does not read; for eos and
+// viscosity under a fixed scheme, every key they declare that the model
+// does not read.
 template <class Note>
 void noteUnusedMethodKeys(const CaseConfig& c, Note&& note) {
+  forEachSharedFamily(c, [&](const auto& table, const char* key, const std::string& chosen) {
+    noteUnreadParameters(table, key, chosen, note);
+  });
   const ModelRow& model = modelOf(c);
   if (!model.composed) {
     const auto fixed = [&](const auto& table) {
@@ -325,12 +558,34 @@ inline DensityTreatment densityTreatment(const CaseConfig& c) {
 }
 inline bool continuityDensity(const CaseConfig& c) { return densityTreatment(c) == DensityTreatment::kContinuity; }
 
-// The names of a table, in order.
-template <class Table>
-std::vector<std::string> methodNames(const Table& table) {
-  std::vector<std::string> names;
-  for (const auto& row : table) names.push_back(row.name);
-  return names;
+// The density diffusion of a continuity case (diffusion and delta keys).
+inline DensityDiffusionChoice densityDiffusion(const CaseConfig& c) {
+  return methodRow(diffusionMethods(), "diffusion", c.diffusion).make(c);
+}
+
+// Whether negative pressures are clamped (negative_pressure key).
+inline bool clampNegativePressure(const CaseConfig& c) {
+  return methodRow(negativePressureMethods(), "negative_pressure", c.negativePressure).make(c);
+}
+
+// The curvature method of the case's surface tension, none without.
+inline std::optional<CurvatureMethod> surfaceTensionCurvature(const CaseConfig& c) {
+  return methodRow(surfaceTensionMethods(), "surface_tension", c.surfaceTension).make(c);
+}
+
+// Whether the scene shifts particles (shifting key).
+inline bool shiftingOn(const CaseConfig& c) { return methodRow(shiftingMethods(), "shifting", c.shifting).make(c); }
+
+// The initial flow field (initial_flow key).
+inline InitialFlow initialFlow(const CaseConfig& c) {
+  return methodRow(initialFlowMethods(), "initial_flow", c.initialFlow).make(c);
+}
+
+// The measured acoustic limit c0 dt / h of the case's kernel and integrator
+// (sph check's advice).
+template <int D>
+Real acousticLimit(const CaseConfig& c) {
+  return chosenKernelRow<D>(c).traits.acousticLimit[static_cast<int>(chosenIntegratorRow<D>(c).traits.acoustic)];
 }
 
 // The row called `name`, or nullptr.

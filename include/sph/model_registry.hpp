@@ -65,21 +65,20 @@ Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>>
   if (c.starMass > 0) spec.bodies.star = StarAttraction<D>{starLambda(c)};
   if (c.damping > 0) spec.bodies.damping = LinearDamping<D>{c.damping};
   spec.density = densityTreatment(c);
-  spec.delta = c.delta;
-  spec.hydrostaticDiffusion = c.diffusion == "fourtakas";
+  spec.diffusion = densityDiffusion(c);
   spec.walls = c.walls ? wallTreatment(c) : WallTreatment::kNoParticles;
   spec.noSlip = c.wallSlip == "no_slip";
   spec.spacing = c.spacing;
-  spec.clampNegative = c.negativePressure == "clamp";
+  spec.clampNegative = clampNegativePressure(c);
   spec.reinit = methodRow(densityReinitMethods(), "density_reinit", c.densityReinit).make(c);
   spec.reinitEvery = c.densityReinitEvery;
   spec.cspm = methodRow(gradientCorrectionMethods(), "gradient_correction", c.gradientCorrection).make(c);
   spec.artificialPressure = c.artificialPressure;
   spec.artificialPressureN = static_cast<int>(c.artificialPressureN);
-  if (c.surfaceTension != "none") spec.surfaceTension = c.sigma;
-  spec.curvature = c.surfaceTension == "muller"      ? CurvatureMethod::kMuller
-                   : c.surfaceTension == "corrected" ? CurvatureMethod::kCorrected
-                                                     : CurvatureMethod::kMorris;
+  if (const auto curvature = surfaceTensionCurvature(c)) {
+    spec.surfaceTension = c.sigma;
+    spec.curvature = *curvature;
+  }
   spec.twoPhase = !c.colourBoxMin.empty() || !c.colourEllipseCenter.empty();
   spec.surfaceThreshold = c.surfaceThreshold;
   spec.wallMotion = wallMotion;
@@ -163,7 +162,7 @@ Scene<D> makeScene(const ResolvedCase& c, InitialState<D> init,
   if (periodic.any()) scene.setPeriodic(periodic);
   if (motion) scene.setWallMotion(*motion);
   if (wallGuardOn(c)) scene.setWallGuard(makeWallGuard<D>(c));
-  if (c.shifting == "fickian")
+  if (shiftingOn(c))
     scene.setShifting(ParticleShifting<D>(makeKernel<D>(c), c.shiftingCoefficient, c.spacing, c.rho0));
   return scene;
 }

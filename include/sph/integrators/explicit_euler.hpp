@@ -14,6 +14,10 @@ template <int D>
 struct ExplicitEuler {
   static constexpr const char* name = "euler";
   static constexpr const char* summary = "explicit Euler: first order, unstable for undamped waves (the known-bad baseline)";
+  // (sph check: unstable at every dt; its acoustic warning uses the leap-frog class's limit)
+  static constexpr AcousticClass kAcousticClass = AcousticClass::kLeapFrog;
+  static constexpr const char* kUnstable = "(explicit Euler) gains energy every step whatever dt";
+  static constexpr Real kViscousFraction = 1;
   static constexpr bool kDensityRateApart = false;  // the force evaluation gives d rho/dt
   static FieldSet needs(bool) { return 0; }
 

@@ -17,6 +17,12 @@
 
 namespace sph {
 
+// Integrators whose acoustic stability limits are alike: each kernel
+// declares its measured limit c0 dt / h per class (methods.hpp), each
+// integrator its class (kAcousticClass).
+enum class AcousticClass { kLeapFrog, kRungeKutta4, kTwoStepLeapFrog };
+constexpr int kAcousticClasses = 3;
+
 // A constraint that does nothing.
 struct NoConstraint {
   template <int D>

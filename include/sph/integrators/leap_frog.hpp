@@ -34,6 +34,9 @@ template <int D>
 struct LeapFrog {
   static constexpr const char* name = "leap_frog";
   static constexpr const char* summary = "kick-drift-kick leap-frog: symplectic, second order, one evaluation per step";
+  static constexpr AcousticClass kAcousticClass = AcousticClass::kLeapFrog;
+  static constexpr const char* kUnstable = nullptr;
+  static constexpr Real kViscousFraction = 1;
   static constexpr bool kDensityRateApart = true;
   static FieldSet needs(bool) { return fieldBit(kFieldVHalf); }
 

@@ -17,6 +17,9 @@ template <int D>
 struct RungeKutta4 {
   static constexpr const char* name = "rk4";
   static constexpr const char* summary = "classical Runge-Kutta: fourth order, four evaluations per step";
+  static constexpr AcousticClass kAcousticClass = AcousticClass::kRungeKutta4;
+  static constexpr const char* kUnstable = nullptr;
+  static constexpr Real kViscousFraction = 1;
   static constexpr bool kDensityRateApart = false;  // the force evaluation gives d rho/dt
   static FieldSet needs(bool density) {
     return fieldBit(kFieldX0) | fieldBit(kFieldV0) | fieldBit(kFieldDx) | fieldBit(kFieldDv) |

@@ -17,6 +17,9 @@ template <int D>
 struct SymplecticEuler {
   static constexpr const char* name = "symplectic_euler";
   static constexpr const char* summary = "semi-implicit Euler: symplectic, first order";
+  static constexpr AcousticClass kAcousticClass = AcousticClass::kLeapFrog;
+  static constexpr const char* kUnstable = nullptr;
+  static constexpr Real kViscousFraction = 1;
   static constexpr bool kDensityRateApart = true;
   static FieldSet needs(bool) { return 0; }
 

@@ -67,6 +67,10 @@ struct TwoStepLeapFrog {
   static constexpr const char* name = "two_step_leap_frog";
   static constexpr const char* summary =
       "two-step leap-frog with a Robert-Asselin filter: one neighbour walk per step, acoustic limit c dt/h ~ 0.86";
+  // sph check warns past this fraction of the viscous limit (above).
+  static constexpr AcousticClass kAcousticClass = AcousticClass::kTwoStepLeapFrog;
+  static constexpr const char* kUnstable = nullptr;
+  static constexpr Real kViscousFraction = 0.02;
   static constexpr bool kDensityRateApart = false;
   static constexpr Real kFilter = 0.05;  // Robert-Asselin nu
   static FieldSet needs(bool density) {

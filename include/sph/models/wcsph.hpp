@@ -48,8 +48,7 @@ struct WcsphSpec {
   BodyForces<D> bodies;
   Real xsphEpsilon = 0;
   DensityTreatment density = DensityTreatment::kSummation;
-  Real delta = 0;              // delta-SPH coefficient (continuity; 0: off)
-  bool hydrostaticDiffusion = true;  // fourtakas (true) or molteni (false)
+  DensityDiffusionChoice diffusion = {};  // delta-SPH (continuity; delta 0: off)
   WallTreatment walls = WallTreatment::kNoParticles;
   bool noSlip = true;          // dummy/dynamic walls in the viscous term
   Real spacing = 0;            // fluid spacing dx (repulsive walls)
@@ -103,11 +102,9 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
 
   WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true, false, 0, 4, 0, std::nullopt};
   forces.continuity = continuity;
-  if (continuity && s.delta > 0) {
-    forces.diffusion.coefficient = 2 * s.delta * h * c0;
-    forces.diffusion.eta2 = 0.01 * h * h;
-    if (s.hydrostaticDiffusion) forces.diffusion.hydrostatic = s.restDensity / (c0 * c0) * g;
-    info.termNames.push_back(s.hydrostaticDiffusion ? "density_diffusion_fourtakas" : "density_diffusion_molteni");
+  if (continuity && s.diffusion.delta > 0) {
+    forces.diffusion = DensityDiffusion<D>::build(s.diffusion, h, c0, s.restDensity, g);
+    info.termNames.push_back(s.diffusion.term);
   }
   forces.wallPairs = s.walls != WallTreatment::kRepulsive;
   forces.wallDensityRates = s.walls == WallTreatment::kDynamic;

@@ -14,11 +14,21 @@
 //             linear EOS, and for Tait to O(rho/rho0 - 1)).
 // Fluid pairs only. With a density gradient from gravity the Molteni form
 // diffuses mass upwards and a column sinks; the Fourtakas form does not.
+//
+// The case chooses the form by name (diffusion key, methods.hpp) as a
+// DensityDiffusionChoice; build() derives the term's constants from it.
 #pragma once
 
 #include "sph/pair_loop.hpp"
 
 namespace sph {
+
+// The chosen form and its delta, before the kernel and the EOS are known.
+struct DensityDiffusionChoice {
+  Real delta = 0;           // delta-SPH coefficient (0: off)
+  bool hydrostatic = true;  // fourtakas (true) or molteni (false)
+  const char* term = "density_diffusion_fourtakas";  // the term's name in run.json
+};
 
 template <int D>
 struct DensityDiffusion {
@@ -29,6 +39,17 @@ struct DensityDiffusion {
   Vec<D> hydrostatic = Vec<D>::Zero();  // rho0 g / c0^2 (fourtakas), zero (molteni)
 
   bool active() const { return coefficient > 0; }
+
+  // The term of a choice: h the smoothing length, c0 the sound speed at
+  // rho0, g the gravity vector (zero when there is none).
+  static DensityDiffusion build(const DensityDiffusionChoice& choice, Real h, Real c0, Real rho0, const Vec<D>& g) {
+    DensityDiffusion d;
+    if (!(choice.delta > 0)) return d;
+    d.coefficient = 2 * choice.delta * h * c0;
+    d.eta2 = 0.01 * h * h;
+    if (choice.hydrostatic) d.hydrostatic = rho0 / (c0 * c0) * g;
+    return d;
+  }
 
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
     if (coefficient == 0) return;
