@@ -12,7 +12,7 @@
 // `sph: error: particle_file <path>`, and write nothing; a random damage that
 // leaves the file valid may instead run (status 0). Never a signal, never a
 // timeout, never a VTK log line.
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include "sph/io/atomic_file.hpp"
 #include "sph/io/vtp_io.hpp"

@@ -1,6 +1,8 @@
 // Bad input never runs and never writes: each case of the catalogue gives one
 // line naming the key or file, a non-zero exit status, and no output folder.
-#include "test_support.hpp"
+#include "cli_support.hpp"
+
+#include <fstream>
 
 using namespace sph;
 

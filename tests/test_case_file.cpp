@@ -3,11 +3,12 @@
 // "did you mean" suggestion; and the real executable reading case files
 // (byte-order mark, CRLF, spaces in the path) and refusing bad ones with one
 // line, exit status 2 and nothing written.
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include "sph/case_file.hpp"
 
 #include <chrono>
+#include <fstream>
 
 using namespace sph;
 

@@ -4,7 +4,7 @@
 // against finite differences of the kernels they come from, and the constants
 // in tests/reference (computed elsewhere, not by this code).
 #include "sph/kernels/kernels.hpp"
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include <boost/test/unit_test.hpp>
 

@@ -3,7 +3,7 @@
 // kernel weights are symmetric; a dry point is dry), the water height and the
 // front of a block, and a real run of the hydrostatic tank whose probe reads
 // rho0 g (H - y) and whose files carry units; bad probe keys refused.
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include "sph/io/probe_files.hpp"
 #include "sph/probes.hpp"

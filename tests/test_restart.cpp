@@ -24,7 +24,7 @@
 //    surge moves ~1e-3 m per 0.01 s).
 // 3D (cases/dam_break_3d.case, coarse, dynamic walls): the restart runs and
 // keeps every wall particle as a wall.
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>

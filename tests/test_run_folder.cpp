@@ -8,7 +8,7 @@
 // keys are named; and the bad-input catalogue of these features (exit 2, one
 // line naming the key, nothing written or removed).
 #include "pvd_reader.hpp"
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include "sph/case_file.hpp"
 #include "sph/case_keys.hpp"

@@ -7,7 +7,7 @@
 // reshaped into the generic pass machinery. This is a regression guard, not
 // a physics reference: it proves the reshaping changed no arithmetic.
 #include "pvd_reader.hpp"
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include <vtkDataArray.h>
 #include <vtkPointData.h>

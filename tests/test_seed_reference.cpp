@@ -22,7 +22,7 @@
 // chose to round-off, and the two must differ by far more than that, so
 // that the comparison can tell them apart.
 #include "pvd_reader.hpp"
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include <vtkDataArray.h>
 #include <vtkPointData.h>

@@ -4,7 +4,7 @@
 // (validation/study.py) is checked by ctest study.ci_small.
 #include "sph/case_config.hpp"
 #include "sph/study.hpp"
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include <boost/test/unit_test.hpp>
 

@@ -1,19 +1,15 @@
-// Helpers shared by the test suites: small scenes built in code, running the
-// real `sph` executable, and scratch folders.
+// Helpers shared by the test suites: small scenes built in code, and (from
+// cli_support.hpp) running the real `sph` executable and scratch folders.
 #pragma once
 
+#include "cli_support.hpp"
 #include "sph/scene.hpp"
 
 #include <boost/test/unit_test.hpp>
 
-#include <array>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
 
 namespace sph::test {
@@ -49,39 +45,6 @@ std::size_t indexOf(const Scene<D>& s, std::int64_t id) {
   return 0;
 }
 
-// A fresh, empty scratch folder under the system temp folder.
-inline std::filesystem::path scratchDir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("sph_test_" + std::to_string(::getpid()) + "_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-struct Result {
-  int exitCode;
-  std::string output;  // stdout and stderr together
-};
-
-// Run the real sph executable with the given arguments (shell-quoted here).
-inline Result runSph(const std::vector<std::string>& args) {
-  // SPH_TEST_EXECUTABLE runs the suites against another build of sph (the
-  // seed_bitwise digests were recorded that way from the program before the
-  // core was reshaped).
-  const char* other = std::getenv("SPH_TEST_EXECUTABLE");
-  std::string cmd = std::string("'") + (other ? other : SPH_EXECUTABLE) + "'";
-  for (const auto& a : args) cmd += " '" + a + "'";
-  cmd += " 2>&1";
-  Result r{-1, ""};
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  BOOST_REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), static_cast<int>(buf.size()), pipe)) r.output += buf.data();
-  const int status = ::pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
 // Total momentum sum m v of the particles, and sum m |v| (the scale its
 // round-off is measured against).
 template <int D>
@@ -93,14 +56,6 @@ std::pair<Vec<D>, Real> momentum(const Particles<D>& P) {
     scale += P.m[i] * P.v[i].norm();
   }
   return {p, scale};
-}
-
-inline std::string caseFile(const std::string& name) {
-  return std::string(SPH_SOURCE_DIR) + "/cases/" + name + ".case";
-}
-
-inline std::string referenceFile(const std::string& name) {
-  return std::string(SPH_REFERENCE_DIR) + "/" + name;
 }
 
 }  // namespace sph::test

@@ -2,7 +2,7 @@
 // equilibrium for M = 2, R = 0.75, k = 0.1, n = 1), and the gate: a relaxed
 // star of 800 particles is within 3% relative L2 of the analytic density
 // inside 0.9 R, in 2D and 3D.
-#include "test_support.hpp"
+#include "cli_support.hpp"
 
 #include "sph/io/vtp_io.hpp"
 #include "sph/toy_star.hpp"
