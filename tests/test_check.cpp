@@ -1,7 +1,7 @@
 // `sph check CASE [--KEY VALUE ...]` (case_check.hpp): it states what the
 // case implies, warns where the case lies outside a method's measured
 // stable range, writes nothing, exits 0 with warnings and 2 on bad input.
-#include "cli_support.hpp"
+#include "test_support.hpp"
 
 #include <boost/test/unit_test.hpp>
 
