@@ -24,75 +24,16 @@
 //    surge moves ~1e-3 m per 0.01 s).
 // 3D (cases/dam_break_3d.case, coarse, dynamic walls): the restart runs and
 // keeps every wall particle as a wall.
+#include "snapshot_by_id.hpp"
 #include "test_support.hpp"
-
-#include <vtkDataArray.h>
-#include <vtkFieldData.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkXMLPolyDataReader.h>
-
-#include <map>
 
 using namespace sph;
 
 namespace {
 
-struct Particle {
-  std::array<double, 3> x, v;
-  double rho, m;
-  int kind;
-};
-
-// A snapshot read with VTK's own reader, by particle id.
-std::map<std::int64_t, Particle> load(const std::filesystem::path& file) {
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(file.string().c_str());
-  reader->Update();
-  vtkPolyData* poly = reader->GetOutput();
-  vtkPointData* pd = poly->GetPointData();
-  std::map<std::int64_t, Particle> out;
-  BOOST_TEST_REQUIRE(poly->GetNumberOfPoints() > 0, file);
-  for (const char* name : {"id", "velocity", "density", "mass", "kind"})
-    BOOST_TEST_REQUIRE(pd->GetArray(name) != nullptr, file << " has no " << name);
-  for (vtkIdType i = 0; i < poly->GetNumberOfPoints(); ++i) {
-    Particle p{};
-    poly->GetPoint(i, p.x.data());
-    pd->GetArray("velocity")->GetTuple(i, p.v.data());
-    p.rho = pd->GetArray("density")->GetTuple1(i);
-    p.m = pd->GetArray("mass")->GetTuple1(i);
-    p.kind = static_cast<int>(pd->GetArray("kind")->GetTuple1(i));
-    out[static_cast<std::int64_t>(pd->GetArray("id")->GetTuple1(i))] = p;
-  }
-  return out;
-}
-
-struct Difference {
-  double x = 0, v = 0, rho = 0, m = 0;
-  int kinds = 0;  // particles whose kind differs
-};
-
-Difference compare(const std::map<std::int64_t, Particle>& a, const std::map<std::int64_t, Particle>& b) {
-  BOOST_TEST_REQUIRE(a.size() == b.size());
-  Difference d;
-  for (const auto& [id, p] : a) {
-    const auto it = b.find(id);
-    BOOST_TEST_REQUIRE((it != b.end()), "id " << id << " missing");
-    const Particle& q = it->second;
-    for (int k = 0; k < 3; ++k) {
-      d.x = std::max(d.x, std::abs(p.x[k] - q.x[k]));
-      d.v = std::max(d.v, std::abs(p.v[k] - q.v[k]));
-    }
-    d.rho = std::max(d.rho, std::abs(p.rho - q.rho));
-    d.m = std::max(d.m, std::abs(p.m - q.m));
-    d.kinds += p.kind != q.kind;
-  }
-  BOOST_TEST_MESSAGE("max |dx| " << d.x << " m, |dv| " << d.v << " m/s, |drho| " << d.rho << ", |dm| " << d.m
-                                 << ", kinds differing " << d.kinds);
-  return d;
-}
+using test::Particle;
+using test::load;
+using test::compare;
 
 int walls(const std::map<std::int64_t, Particle>& s) {
   int n = 0;
