@@ -39,6 +39,7 @@ namespace {
 using test::Particle;
 using test::load;
 using test::compare;
+using test::Difference;
 
 int walls(const std::map<std::int64_t, Particle>& s) {
   int n = 0;
