@@ -137,6 +137,8 @@ def main():
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--steps", type=int, default=0, help="steps per run (default: about 4e6 particle-steps)")
     ap.add_argument("--old-build", help="an earlier build folder whose sph runs every row too, interleaved")
+    ap.add_argument("--sph_flags", default="",
+                    help="more flags for every sph run, e.g. \"--neighbour_skin 0.1\" (one string, split at spaces)")
     ap.add_argument("--check", action="store_true",
                     help="exit 1 unless every figure of every row is finite and positive (the smoke test)")
     a = ap.parse_args()
@@ -148,6 +150,8 @@ def main():
         if not os.access(exe, os.X_OK):
             sys.exit(f"speed_table: {exe} not found: build it first (cmake --build build)")
     names = a.scenarios.split(",")
+    for s in SCENARIOS.values():
+        s.extra = s.extra + a.sph_flags.split()
     for s in names:
         if s not in SCENARIOS:
             sys.exit(f"speed_table: --scenarios: unknown '{s}' (allowed: {', '.join(SCENARIOS)})")

@@ -68,6 +68,10 @@ void validateCase(const CaseConfig& c) {
     if (c.xsph != 0 || c.damping != 0 || c.starMass != 0 || c.cfl != 0)
       throw CaseError("xsph, damping, star_* and cfl need model = \"wcsph\"; model seed_wcsph "
                       "is the seed scheme exactly");
+    if (c.neighbourSkin != 0)
+      throw CaseError("neighbour_skin = " + significant(c.neighbourSkin) + ": model seed_wcsph takes 0 only (its "
+                      "pressure and viscosity factors are not cut off at the support, so a pair in the skin would "
+                      "count); use model = \"wcsph\"");
     const char* only = modelOf(c).onlyIntegrator;
     if (only && !c.integrator.empty() && c.integrator != only)
       throw CaseError("integrator = \"" + c.integrator + "\": model seed_wcsph uses " + only + " only");
@@ -194,6 +198,7 @@ ResolvedCase withDefaults(CaseConfig c) {
     if (c.kernel.empty()) c.kernel = kDefaultKernel;
     if (c.eos.empty()) c.eos = kDefaultEos;
     if (c.viscosity.empty()) c.viscosity = kDefaultViscosity;
+    if (!c.isGiven("neighbour_skin")) c.neighbourSkin = kDefaultNeighbourSkin;
   }
   return ResolvedCase(std::move(c));
 }

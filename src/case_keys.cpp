@@ -224,6 +224,11 @@ const std::vector<KeySpec>& caseKeys() {
        "Kernel gradient correction (model wcsph): none, or cspm (L_i grad W, exact for linear fields, in the "
        "pressure gradient; the continuity sum keeps grad W)",
        {}, nullptr, gradientCorrectionNames},
+      {"neighbour_skin", G::kNumerics, &C::neighbourSkin, "",
+       "Verlet skin of the neighbour list, as a fraction of the kernel support: the list holds the pairs within "
+       "support (1 + skin) and is rebuilt (with the sort by cell) only when a particle has moved more than half "
+       "the skin since the last build; 0: rebuilt at every evaluation",
+       within(0, 1), "0.1 for model wcsph, 0 for seed_wcsph", nullptr},
       {"regime_check", G::kNumerics, &C::regimeCheck, "",
        "Every 10 steps and before every snapshot: Mach number above 1, a Tait fluid 10% above rho0, the fluid "
        "breaking up (over half its particles alone), particles collapsing (4x the neighbours), pairing (a "

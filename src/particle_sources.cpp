@@ -435,6 +435,7 @@ InitialState<D> resumeState(const std::string& snapshot) {
     for (const auto& w : f.vXsph) P.vXsph.push_back(vec(w));
   for (const auto& w : f.vPrev) P.vPrev.push_back(vec(w));  // two-step leap-frog
   if (!f.rhoPrev.empty()) P.rhoPrev = f.rhoPrev;
+  for (const auto& w : f.xList) P.xList.push_back(vec(w));  // the neighbour list's build (scene.hpp)
   s.massesGiven = true;
   s.startTime = f.time;
   s.startStep = f.step;

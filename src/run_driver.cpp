@@ -94,7 +94,7 @@ class RegimeWatch {
 
  private:
   RegimeState measure(const Scene<D>& scene, const CaseConfig& c) const {
-    return measureRegime(scene.particles(), scene.neighbours(), soundSpeed_, c.spacing, densityRef_);
+    return measureRegime(scene.particles(), scene.neighbours(), soundSpeed_, c.spacing, densityRef_, scene.support());
   }
 
   Real soundSpeed_, densityRef_;

@@ -380,7 +380,7 @@ struct Layout {
   bool velocity = false, mass = false, id = false, time = false;
   // The arrays a resume reads besides (the state an integrator carries).
   bool acceleration = false, density = false, densityRate = false, xsph = false, kind = false, step = false;
-  bool colour = false, velocityPrevious = false, densityPrevious = false;
+  bool colour = false, velocityPrevious = false, densityPrevious = false, listBuildPosition = false;
 };
 
 const Element* onlyChild(const Header& h, const Element& parent, const std::string& name, bool required,
@@ -532,13 +532,15 @@ Layout checkLayout(const std::string& path) {
           {"velocity", &L.velocity},       {"mass", &L.mass},        {"id", &L.id},
           {"acceleration", &L.acceleration}, {"density", &L.density}, {"density_rate", &L.densityRate},
           {"xsph_velocity", &L.xsph},      {"kind", &L.kind},       {"colour", &L.colour},
-          {"velocity_previous", &L.velocityPrevious}, {"density_previous", &L.densityPrevious}};
+          {"velocity_previous", &L.velocityPrevious}, {"density_previous", &L.densityPrevious},
+          {"list_build_position", &L.listBuildPosition}};
       for (const auto& [known_name, seen] : known) {
         if (name != known_name) continue;
         if (*seen) throw Problem("has two point arrays named \"" + name + "\"");
         *seen = true;
       }
-      if (name == "velocity" || name == "acceleration" || name == "xsph_velocity" || name == "velocity_previous")
+      if (name == "velocity" || name == "acceleration" || name == "xsph_velocity" || name == "velocity_previous" ||
+          name == "list_build_position")
         require(isFloatType(arrayType) && components == 3, "type Float32 or Float64 and 3 components");
       if (name == "mass" || name == "density" || name == "density_rate" || name == "colour" ||
           name == "density_previous")
@@ -639,7 +641,7 @@ VtpParticles readChecked(const std::string& path) {
   vtkDataArraySelection* arrays = reader->GetPointDataArraySelection();
   arrays->DisableAllArrays();
   for (const char* name : {"velocity", "mass", "id", "acceleration", "density", "density_rate", "xsph_velocity", "kind",
-                           "colour", "velocity_previous", "density_previous"})
+                           "colour", "velocity_previous", "density_previous", "list_build_position"})
     arrays->EnableArray(name);
   reader->GetCellDataArraySelection()->DisableAllArrays();
   reader->Update();
@@ -724,6 +726,7 @@ VtpParticles readChecked(const std::string& path) {
   readScalars(L.colour, "colour", out.colour);
   readVectors(L.velocityPrevious, "velocity_previous", out.vPrev);
   readScalars(L.densityPrevious, "density_previous", out.rhoPrev);
+  readVectors(L.listBuildPosition, "list_build_position", out.xList);
   if (L.kind) {
     vtkDataArray* k = pointArray("kind", 1);
     out.kind.resize(count);

@@ -198,7 +198,11 @@ BOOST_AUTO_TEST_CASE(kernel_corrections_cost_nothing_when_off) {
   BOOST_TEST((executed(s) & (kSymmetricPressure | kShepardDensity | kMlsDensity)) == 0u);
   BOOST_TEST(s.particles().cspmL.size() == n);
   BOOST_TEST(s.particles().rhoReinit.empty());
-  BOOST_TEST(s.particles().bytesAllocated() - bytesOff == n * sizeof(Mat<2>));
+  // With the neighbour list's skin (wcsph's default), a rebuild carries L
+  // with its particle through a scratch of its own (Particles::permute,
+  // grown to n + 16 once): the one more array CSPM costs then.
+  const std::size_t carry = s.neighbourSkin() > 0 ? (n + 16) * sizeof(Mat<2>) : 0;
+  BOOST_TEST(s.particles().bytesAllocated() - bytesOff == n * sizeof(Mat<2>) + carry);
   BOOST_TEST(s.model().afterStepPasses().empty());
 }
 

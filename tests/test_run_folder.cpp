@@ -567,6 +567,17 @@ BOOST_AUTO_TEST_CASE(resume_is_bit_identical) {
                       {"--output_every", "20", "--gradient_correction", "cspm", "--density_reinit", "shepard",
                        "--density_reinit_every", "20"},
                       "0.0023", "0.004"});
+  // A Verlet skin (wcsph's default 0.1 above rebuilds the list only at the
+  // start in these short runs): so thin that the list is rebuilt every few
+  // steps, stopped between two rebuilds; leap-frog's half-step density rate
+  // and RK4's four evaluations; a periodic box, whose particles are wrapped
+  // only at a rebuild.
+  variants.push_back({"water_skin", test::caseFile("dam_break_mm"),
+                      {"--output_every", "20", "--neighbour_skin", "0.002"}, "0.0023", "0.004"});
+  variants.push_back({"rk4_skin", wcsph, {"--integrator", "rk4", "--output_every", "10", "--neighbour_skin", "0.002"},
+                      "0.0017", "0.004"});
+  variants.push_back({"periodic_skin", test::caseFile("poiseuille_2d"),
+                      {"--output_every", "20", "--neighbour_skin", "0.01", "--gravity", "1e-2", "0"}, "0.0235", "0.04"});
   for (const char* integrator : {"leap_frog", "rk4"})
     variants.push_back({std::string("adaptive_") + integrator,
                         wcsph,

@@ -115,6 +115,10 @@ struct CaseConfig {
   Real probeRadius = 0;            // > 0: point probes are sensors, pressure averaged over a disc on the wall
   Real probeWindow = 0;            // > 0: a moving average of each probe's pressure over this many seconds
 
+  // neighbour list (sph/scene.hpp): Verlet skin as a fraction of the support;
+  // withDefaults() sets kDefaultNeighbourSkin for model wcsph, 0 for the seed
+  Real neighbourSkin = 0;
+
   // regime check (sph/regime_check.hpp): stop | warn | off
   std::string regimeCheck = "stop";
 

@@ -11,6 +11,10 @@
 //            its stages, so they are permuted too), never written
 //   rate     d/dt of a state field, recomputed by every evaluation
 //   derived  recomputed from the state by every evaluation (pressure, ...)
+//   list     the neighbour list's own record (with a Verlet skin, scene.hpp:
+//            the positions of its last build), rewritten at every rebuild,
+//            so never permuted or carried, and not copied to ghosts;
+//            written to snapshots so that a resume rebuilds the same list
 // Rates and derived fields are stale after a permute until the model
 // evaluates again, so they are not permuted. Density is state when it is
 // integrated (continuity density, with a drho field) and derived when it
@@ -21,7 +25,7 @@
 
 namespace sph {
 
-enum class FieldRole : std::uint8_t { kState, kStage, kRate, kDerived };
+enum class FieldRole : std::uint8_t { kState, kStage, kRate, kDerived, kList };
 
 enum FieldId : unsigned {
   kFieldX,         // position [m]
@@ -50,6 +54,7 @@ enum FieldId : unsigned {
   kFieldCurvature,        // curvature kappa of the colour field's surface (surface tension)
   kFieldVPrev,     // two-step leap-frog: the filtered velocity of the step before
   kFieldRhoPrev,   // ... and density
+  kFieldXList,     // position at the neighbour list's last build (skin > 0) [m]
   kFieldCount
 };
 
@@ -99,9 +104,13 @@ inline constexpr FieldInfo kFieldTable[kFieldCount] = {
     {kFieldCurvature, "curvature", FieldRole::kDerived, "curvature", "1/m", "1/m"},
     {kFieldVPrev, "vPrev", FieldRole::kState, "velocity_previous", "m/s", "m/s"},
     {kFieldRhoPrev, "rhoPrev", FieldRole::kState, "density_previous", "kg/m^3", "kg/m^2"},
+    {kFieldXList, "xList", FieldRole::kList, "list_build_position", "m", "m"},
 };
 
 constexpr bool isPermuted(FieldRole r) { return r == FieldRole::kState || r == FieldRole::kStage; }
+
+// The fields of the list role (see the top): neither carried nor refreshed.
+constexpr FieldSet kListFields = fieldBit(kFieldXList);
 
 // Particle kinds (the kind field). Walls are stored after all fluid particles.
 enum ParticleKind : std::uint8_t { kFluid = 0, kWall = 1 };

@@ -14,5 +14,8 @@ inline constexpr const char* kDefaultEos = "linear";
 inline constexpr const char* kDefaultViscosity = "laplacian";
 inline constexpr const char* kDefaultBoundary = "reflecting";
 inline constexpr const char* kDefaultDensity = "summation";
+// The neighbour list's Verlet skin under a composed model (a fraction of the
+// support; scene.hpp); the seed scheme keeps 0, a list per evaluation.
+inline constexpr double kDefaultNeighbourSkin = 0.1;
 
 }  // namespace sph

@@ -158,7 +158,7 @@ Scene<D> makeScene(const ResolvedCase& c, InitialState<D> init,
       if (motion->moves(init.particles.id[i])) init.particles.v[i] = motion->velocity(startTime);
   }
   Scene<D> scene(std::move(init.particles), makeModel<D>(c, motion), walls, check, TimeStepControl{c.dt, c.cfl, c.endTime},
-                 startTime, makeIntegrator<D>(c.integrator));
+                 startTime, makeIntegrator<D>(c.integrator), c.neighbourSkin);
   if (periodic.any()) scene.setPeriodic(periodic);
   if (motion) scene.setWallMotion(*motion);
   if (wallGuardOn(c)) scene.setWallGuard(makeWallGuard<D>(c));

@@ -25,6 +25,12 @@
 // (NoGradientCorrection, or GradientCorrection with no matrices) gradWC is
 // grad W itself.
 //
+// A neighbour list with a Verlet skin (scene.hpp) also holds pairs a little
+// beyond the support: the loop skips them (r^2 >= support^2, the test the
+// list's build makes), so they cost a distance, not the kernel and the
+// evaluators. Every kernel's W and grad W are 0 there too, so the other
+// walks (forEachNeighbourSeparation) get exact zeros from them.
+//
 // r_ij is always x_i - x_j: along periodic axes a neighbour across a face
 // is a ghost particle, a copy of it shifted by the box length
 // (periodic_ghosts.hpp), so no pair needs a minimum image. The loop runs
@@ -170,18 +176,28 @@ unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const 
                      const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
                      const WallEpilogue& wallEpilogue, PairLoopParts parts = {}, const Correction& correct = {}) {
   const std::size_t n = P.size(), nFluid = P.fluidCount();
-  const Real invSupport = 1 / support;
+  const Real invSupport = 1 / support, support2 = support * support;
   const bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0 && parts.wallParticles && P.hasWalls();
   const bool walls = P.hasWalls() && parts.wallPairs;
+  // A pair in the list's skin. (Never for the seed scheme, NoPairKernel,
+  // which keeps skin 0: its loop has no test.)
+  auto beyond = [support2](const Vec<D>& xi, const Vec<D>& xj) {
+    if constexpr (std::is_same_v<Kernel, NoPairKernel>) return false;
+    else return !(Vec<D>(xi - xj).squaredNorm() < support2);
+  };
 #pragma omp parallel if (n >= kMinParallelSize)
   {
     auto fluidParticle = [&](std::size_t i, auto byKind) {
       PairRates<D> r;
       const Vec<D> xi = P.x[i];
       const auto ii = static_cast<std::uint32_t>(i);
-      auto fluid = [&](std::uint32_t j) { addPair(fluidPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, correct), P, r); };
+      auto fluid = [&](std::uint32_t j) {
+        if (beyond(xi, P.x[j])) return;
+        addPair(fluidPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, correct), P, r);
+      };
       if constexpr (decltype(byKind)::value)
         neighbours.forEachByKind(i, fluid, [&](std::uint32_t j) {
+          if (beyond(xi, P.x[j])) return;
           addPair(wallPairs, makePair(ii, j, xi, P.x[j], kernel, invSupport, correct), P, r);
         });
       else
@@ -201,8 +217,10 @@ unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const 
         PairRates<D> r;
         const Vec<D> xi = P.x[i];
         const auto ii = static_cast<std::uint32_t>(i);
-        neighbours.forEach(
-            i, [&](std::uint32_t j) { addPair(wallParticlePairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r); });
+        neighbours.forEach(i, [&](std::uint32_t j) {
+          if (beyond(xi, P.x[j])) return;
+          addPair(wallParticlePairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r);
+        });
         wallEpilogue(i, P, r);
       }
     }

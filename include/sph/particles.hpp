@@ -55,6 +55,7 @@ struct FieldArrays {
   std::vector<Real> curvature;
   std::vector<Vec<D>> vPrev;
   std::vector<Real> rhoPrev;
+  std::vector<Vec<D>> xList;
 
   // f(info, field of s0, field of s1, ...) for every row of the table, in
   // table order: the one place that lists the members.
@@ -86,6 +87,7 @@ struct FieldArrays {
     f(kFieldTable[kFieldCurvature], s.curvature...);
     f(kFieldTable[kFieldVPrev], s.vPrev...);
     f(kFieldTable[kFieldRhoPrev], s.rhoPrev...);
+    f(kFieldTable[kFieldXList], s.xList...);
   }
 
   // Call f(info, array) for every field.
@@ -237,7 +239,7 @@ struct Particles : FieldArrays<D> {
     const std::size_t ng = ghostSource_.size();
     if (ng == 0) return;
     const std::size_t owned = size();
-    fields &= allocated_;
+    fields &= allocated_ & ~kListFields;
     const std::uint32_t* src = ghostSource_.data();
     this->forEachField([&](const FieldInfo& info, auto& field) {
       if (((fields >> info.id) & 1u) == 0 || info.id == kFieldX) return;
@@ -257,7 +259,13 @@ struct Particles : FieldArrays<D> {
   // ghosts after the owned particles, so the ranges do not change. The
   // ghosts' sources follow their particles and are then refreshed (all
   // fields: the non-permuted ones of a ghost were never its own).
-  void permute(const std::vector<std::uint32_t>& order) {
+  //
+  // carryAll: the rates and derived fields follow their particles too (the
+  // neighbour list's rebuilds with a skin, scene.hpp: they happen between
+  // a field's computation and its use). They are gathered into the free
+  // shadow of x (vectors) or m (scalars) and swapped in, so they need no
+  // buffer of their own (the matrices of CSPM: one, grown once).
+  void permute(const std::vector<std::uint32_t>& order, bool carryAll = false) {
     const std::size_t n = totalSize();
     const FieldSet permuted = permuted_;
     FieldArrays<D>::zip(
@@ -278,6 +286,7 @@ struct Particles : FieldArrays<D> {
           if ((permuted >> info.id) & 1u) field.swap(shadow);
         },
         *this, shadow_);
+    if (carryAll) carryOthers(order);
     if (ghostSource_.empty()) return;
     const std::size_t owned = size(), ng = ghostSource_.size();
     newIndex_.resize(owned);
@@ -296,12 +305,40 @@ struct Particles : FieldArrays<D> {
 
   // Every array of the particles, shadow buffers included [bytes].
   std::size_t bytesAllocated() const {
-    return FieldArrays<D>::bytesAllocated() + shadow_.bytesAllocated() +
+    return FieldArrays<D>::bytesAllocated() + shadow_.bytesAllocated() + matrixScratch_.capacity() * sizeof(Mat<D>) +
            (ghostSource_.capacity() + sourceShadow_.capacity() + newIndex_.capacity()) * sizeof(std::uint32_t) +
            (ghostShift_.capacity() + shiftShadow_.capacity()) * sizeof(Vec<D>);
   }
 
  private:
+  // permute()'s carryAll part: the allocated fields that are not permuted,
+  // after the permuted ones (whose shadows now hold stale copies).
+  void carryOthers(const std::vector<std::uint32_t>& order) {
+    const std::size_t n = totalSize();
+    const FieldSet others = allocated_ & ~permuted_ & ~kListFields;
+    if (others == 0) return;
+    if (others & fieldBit(kFieldCspmL)) growTo(matrixScratch_, n);
+#pragma omp parallel if (n >= kMinParallelSize)
+    this->forEachField([&](const FieldInfo& info, auto& field) {
+      if (((others >> info.id) & 1u) == 0) return;
+      using T = typename std::decay_t<decltype(field)>::value_type;
+      // (id and kind, the integer fields, are state: always permuted.)
+      if constexpr (std::is_same_v<T, Vec<D>> || std::is_same_v<T, Real> || std::is_same_v<T, Mat<D>>) {
+        std::vector<T>& scratch = scratchFor(field);
+#pragma omp for schedule(static)
+        for (std::size_t k = 0; k < n; ++k) scratch[k] = field[order[k]];
+#pragma omp single
+        field.swap(scratch);
+      }
+    });
+  }
+
+  std::vector<Vec<D>>& scratchFor(const std::vector<Vec<D>>&) { return shadow_.x; }
+  std::vector<Real>& scratchFor(const std::vector<Real>&) { return shadow_.m; }
+  std::vector<Mat<D>>& scratchFor(const std::vector<Mat<D>>&) {
+    return matrixScratch_;
+  }
+
   // The permuted fields (allocated, with a permuted role) and their shadows.
   void setPermuted() {
     permuted_ = 0;
@@ -341,6 +378,7 @@ struct Particles : FieldArrays<D> {
   FieldSet allocated_ = 0;
   FieldSet permuted_ = 0;
   FieldArrays<D> shadow_;
+  std::vector<Mat<D>> matrixScratch_;  // carryAll's scratch for the CSPM matrices
 };
 
 }  // namespace sph

@@ -2,7 +2,9 @@
 // does with its periodic particles (Dominguez et al. 2022, "DualSPHysics:
 // from fluid dynamics to multiphysics problems", Comp. Part. Mech. 9).
 //
-// At every sort the owned particles are wrapped into the box [lo, hi) along
+// At every sort (with a skin: every rebuild of the neighbour list; between
+// two, a particle may stand up to half the skin outside the box, its
+// ghosts following it) the owned particles are wrapped into the box [lo, hi) along
 // the periodic axes (periodic_box.hpp); then every owned particle (fluid or
 // wall) within one support `layer` of a periodic face is copied, shifted by
 // the box length, to beyond the opposite face:
@@ -17,7 +19,9 @@
 // narrower periodic boxes) a pair closer than the support is seen through
 // exactly one of j and its ghosts, as the minimum image would see it.
 //
-// The layer is the support itself (times 1 + 1e-9, as the grid's cell, so
+// The layer is the neighbour list's radius: the support, or with a Verlet
+// skin (scene.hpp) support (1 + skin), so that a pair the list must hold
+// until its next rebuild has its ghost (times 1 + 1e-9, as the grid's cell, so
 // that rounding in x_i - (x_j - L) against the minimum image (x_i - x_j) + L
 // never loses a pair at the edge of the support; an extra ghost costs only
 // a distance test). Ghosts compute nothing: the model's sync() between
@@ -30,6 +34,9 @@
 #include "sph/particles.hpp"
 #include "sph/periodic_box.hpp"
 
+#include <algorithm>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace sph {
@@ -38,14 +45,20 @@ template <int D>
 class PeriodicGhosts {
  public:
   PeriodicGhosts() = default;
-  PeriodicGhosts(const PeriodicBox<D>& box, Real support) : box_(box), layer_(support * (1 + 1e-9)) {}
+  // `radius`: the neighbour list's (the support, times 1 + skin).
+  PeriodicGhosts(const PeriodicBox<D>& box, Real radius) : box_(box), layer_(radius * (1 + 1e-9)) {}
 
   const PeriodicBox<D>& box() const { return box_; }
   Real layer() const { return layer_; }
 
   // Drop the old ghosts, wrap the owned particles into the box and append
-  // the ghosts of their current positions.
-  void make(Particles<D>& P) {
+  // the ghosts of their current positions. byId: the ghosts of fluid, and
+  // those of walls, in the order of their sources' ids (each source's
+  // shifts in the order above), not of the sources' places, so that the
+  // ghosts and the list built on them do not depend on the order the owned
+  // particles had before the sort (a resumed run rebuilds the list of the
+  // run that wrote the snapshot: scene.hpp).
+  void make(Particles<D>& P, bool byId = false) {
     P.clearGhosts();
     const std::size_t n = P.size(), nFluid = P.fluidCount();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
@@ -58,10 +71,31 @@ class PeriodicGhosts {
       if (i + 1 == nFluid) fluidGhosts = source_.size();
     }
     if (nFluid == n) fluidGhosts = source_.size();
+    if (byId) orderById(P, fluidGhosts);
     P.addGhosts(source_, shift_, fluidGhosts);
   }
 
  private:
+  // Reorder the ghost records [0, fluidGhosts) and [fluidGhosts, end) by
+  // (id of the source, place): a source's records are consecutive, in the
+  // order of its shifts. std::sort allocates nothing; the buffers are reused.
+  void orderById(const Particles<D>& P, std::size_t fluidGhosts) {
+    const std::size_t ng = source_.size();
+    keys_.resize(ng);
+    for (std::size_t g = 0; g < ng; ++g) keys_[g] = {P.id[source_[g]], static_cast<std::uint32_t>(g)};
+    const auto split = keys_.begin() + static_cast<std::ptrdiff_t>(fluidGhosts);
+    std::sort(keys_.begin(), split);
+    std::sort(split, keys_.end());
+    sourceSorted_.resize(ng);
+    shiftSorted_.resize(ng);
+    for (std::size_t g = 0; g < ng; ++g) {
+      sourceSorted_[g] = source_[keys_[g].second];
+      shiftSorted_[g] = shift_[keys_[g].second];
+    }
+    source_.swap(sourceSorted_);
+    shift_.swap(shiftSorted_);
+  }
+
   // The ghosts of one particle: every combination of the axes' shifts but none.
   void addImages(const Vec<D>& x, std::uint32_t i) {
     Real options[D][3];
@@ -93,18 +127,24 @@ class PeriodicGhosts {
   Real layer_ = 0;
   std::vector<std::uint32_t> source_;  // reused: no allocation once grown
   std::vector<Vec<D>> shift_;
+  std::vector<std::pair<std::int64_t, std::uint32_t>> keys_;  // orderById's, reused
+  std::vector<std::uint32_t> sourceSorted_;
+  std::vector<Vec<D>> shiftSorted_;
 };
 
 // Sort the owned particles by cell, with the ghosts of a periodic box
 // (ghosts == nullptr: none), and build the neighbour list of the sorted
-// particles: the one sort every scene and test goes through.
+// particles within `radius` (the support, times 1 + skin): the one sort
+// every scene and test goes through. carryAll (a list with a skin): every
+// field follows its particle, rates and derived fields too
+// (Particles::permute()), and the ghosts are made in the order of ids.
 template <int D>
-void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours, Real support,
-                PeriodicGhosts<D>* ghosts = nullptr) {
-  if (ghosts) ghosts->make(P);
+void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours, Real radius,
+                PeriodicGhosts<D>* ghosts = nullptr, bool carryAll = false) {
+  if (ghosts) ghosts->make(P, carryAll);
   grid.build(P.x, P.fluidCount(), P.size(), P.ghostFluidEnd());
-  P.permute(grid.order());
-  neighbours.build(grid, P.x, support, P.fluidCount(), P.size());
+  P.permute(grid.order(), carryAll);
+  neighbours.build(grid, P.x, radius, P.fluidCount(), P.size());
 }
 
 }  // namespace sph

@@ -32,6 +32,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -51,7 +52,9 @@ constexpr Real kDensityWindow = 0.1;
 
 template <int D>
 RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbours, Real cRef, Real dx,
-                          Real rho0 = 0) {
+                          Real rho0 = 0, Real support = std::numeric_limits<Real>::infinity()) {
+  // (A list with a Verlet skin holds pairs beyond the support: not counted.)
+  const Real support2 = support * support;
   const std::size_t nFluid = P.fluidCount();
   const Real close2 = dx > 0 ? 0.04 * dx * dx : 0;
   Real v2 = 0, rhoMax = 0;
@@ -65,8 +68,9 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
     bool close = false;
     const Vec<D> xi = P.x[i];
     neighbours.forEach(i, [&](std::uint32_t j) {
-      ++count;
-      close |= Vec<D>(xi - P.x[j]).squaredNorm() < close2;
+      const Real r2 = Vec<D>(xi - P.x[j]).squaredNorm();
+      count += r2 < support2;
+      close |= r2 < close2;
     });
     pairs += count;
     isolated += count == 0;

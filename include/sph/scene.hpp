@@ -4,7 +4,28 @@
 // evaluate() = sort by cell (permuting the state and stage fields; with a
 // periodic box, wrapping the particles and making their ghosts,
 // periodic_ghosts.hpp), rebuild the grid and the neighbour list, then the
-// model's passes at the current state. The ghosts are refreshed from their
+// model's passes at the current state.
+//
+// Verlet skin (neighbour_skin = s > 0, a fraction of the support R; Verlet
+// 1967, as in Allen & Tildesley 1987, sec. 5.3.1): the list holds every
+// pair closer than R (1 + s) at the positions x_b of its build, and the
+// sort, the grid, the ghosts and the list are kept until some particle is
+// more than s R / 2 from x_b: until then two particles closer than R now
+// were closer than R + s R at the build, so the list still holds every
+// pair the passes need, and the pairs beyond R it holds contribute exactly
+// 0 (every kernel's W and grad W are 0 from the support on). The check is
+// made before every use of the list at new positions (every evaluation,
+// RK4's stages included, and leap-frog's half-step density rate), in the
+// parallel region that refreshes the ghosts; a rebuild there carries every
+// field with its particle (rates and derived ones too: they are read after
+// it). Positions are wrapped into a periodic box only at a rebuild, so a
+// ghost stays at its source plus its shift. The positions of the build
+// (field xList) go into every snapshot: a resumed run builds its list
+// again at them (the particles are still in the build's order, and the
+// ghosts are made in the order of ids), so it holds the pairs, in the
+// order, of the list the interrupted run had, and goes on bit for bit,
+// wherever it was stopped. s = 0: a list per evaluation, as before (the
+// seed scheme). The ghosts are refreshed from their
 // sources wherever the owned particles changed and a neighbour walk follows:
 // between passes (Model::sync), before the integrators' density-rate pass,
 // after the mass scaling and after each step. One step = the integrator's advance (as many evaluate() calls as it
@@ -30,6 +51,7 @@
 #include "sph/time_step.hpp"
 #include "sph/wall_motion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -51,14 +73,16 @@ class Scene {
  public:
   Scene(Particles<D> particles, Model<D> model, std::optional<DampedReflectingWalls<D>> walls,
         StateCheck<D> check, TimeStepControl timeStep, Real startTime = 0,
-        Integrator<D> integrator = LeapFrog<D>{})
+        Integrator<D> integrator = LeapFrog<D>{}, Real neighbourSkin = 0)
       : P_(std::move(particles)),
         model_(std::move(model)),
         integrator_(std::move(integrator)),
         walls_(std::move(walls)),
         check_(std::move(check)),
         timeStep_(timeStep),
-        grid_(model_.support()),
+        grid_(model_.support() * (1 + neighbourSkin)),
+        skin_(neighbourSkin),
+        listRadius_(model_.support() * (1 + neighbourSkin)),
         startTime_(startTime),
         time_(startTime) {
     P_.resize(P_.size(), P_.fluidCount() ? P_.fluidCount() : SIZE_MAX);
@@ -72,16 +96,33 @@ class Scene {
       if (((integratorNeeds >> info.id) & 1u) && info.role == FieldRole::kState && field.size() != n)
         carriedMissing_ |= fieldBit(info.id);
     });
-    P_.allocate(model_.needs() | integratorNeeds);
+    P_.allocate(model_.needs() | integratorNeeds | (skin_ > 0 ? fieldBit(kFieldXList) : FieldSet(0)));
     if (auto* leapFrog = std::get_if<LeapFrog<D>>(&integrator_))
       leapFrog->forcesSeeHalfStepVelocity = model_.forcesSeeHalfStepVelocity();
   }
 
   // Periodic axes of the domain box; call before initialise() or resume().
+  // With a skin, the state check lets a particle stand half the skin
+  // beyond a periodic face (it is wrapped at the next rebuild).
   void setPeriodic(const PeriodicBox<D>& box) {
-    if (box.any()) ghosts_.emplace(box, model_.support());
+    if (box.any()) ghosts_.emplace(box, listRadius_);
     else ghosts_.reset();
+    for (int a = 0; a < D; ++a)
+      if (box.periodic(a)) {
+        check_.lo[a] -= skinDistance() / 2;
+        check_.hi[a] += skinDistance() / 2;
+      }
   }
+  // The neighbour list's Verlet skin, a fraction of the support (see the top).
+  Real neighbourSkin() const { return skin_; }
+  // Make the neighbour list fit the particles' current positions: with no
+  // skin, sort and build it; with one, keep it if it still holds (the
+  // ghosts refreshed), else rebuild. (Each evaluation calls it.)
+  void prepareList() {
+    if (skin_ == 0 || !listStillHolds()) sort();
+  }
+  // Builds of the neighbour list so far (one per evaluation without a skin).
+  long listBuilds() const { return listBuilds_; }
   PeriodicBox<D> periodicBox() const { return ghosts_ ? ghosts_->box() : PeriodicBox<D>{}; }
   // Particle shifting at the start of every step (particle_shifting.hpp).
   void setShifting(ParticleShifting<D> shifting) { shifting_.emplace(std::move(shifting)); }
@@ -121,9 +162,18 @@ class Scene {
   const TimeStepChoice& lastTimeStep() const { return lastStep_; }
   Real support() const { return model_.support(); }
 
-  // Mean number of neighbours per particle (j != i inside the support).
+  // Mean number of neighbours per particle (j != i inside the support;
+  // with a skin the list holds more, which are not counted).
   Real meanNeighbours() const {
-    return P_.size() ? static_cast<Real>(neighbours_.pairCount()) / static_cast<Real>(P_.size()) : 0;
+    if (P_.size() == 0) return 0;
+    std::size_t pairs = neighbours_.pairCount();
+    if (skin_ > 0) {
+      pairs = 0;
+      const Real support2 = model_.support() * model_.support();
+      for (std::size_t i = 0; i < P_.size(); ++i)
+        neighbours_.forEach(i, [&](std::uint32_t j) { pairs += (P_.x[i] - P_.x[j]).squaredNorm() < support2; });
+    }
+    return static_cast<Real>(pairs) / static_cast<Real>(P_.size());
   }
 
   // Every array of the scene, the ghosts' included [bytes].
@@ -142,7 +192,32 @@ class Scene {
     return startTime_ + static_cast<Real>(n) * timeStep_.dt;
   }
 
+  // The skin's length [m].
+  Real skinDistance() const { return skin_ * model_.support(); }
+
+  // Sort by cell, wrap and make the ghosts, build the grid and the list;
+  // with a skin, remember the positions of the build.
   void sort();
+
+  // resume() with a skin: the list of the snapshot's build, at its positions.
+  void rebuildRecordedList();
+
+
+  // Every owned particle within half the skin of its position at the last
+  // build (the largest displacement, a max reduction), in one parallel
+  // region with the ghosts' refresh from their sources.
+  bool listStillHolds() {
+    const std::size_t n = P_.size();
+    const Real half = skinDistance() / 2;
+    Real worst2 = 0;
+#pragma omp parallel if (n >= kMinParallelSize)
+    {
+#pragma omp for schedule(static) reduction(max : worst2)
+      for (std::size_t i = 0; i < n; ++i) worst2 = std::max(worst2, Vec<D>(P_.x[i] - P_.xList[i]).squaredNorm());
+      P_.refreshGhostsInTeam();
+    }
+    return worst2 <= half * half;
+  }
 
   void evaluate();
 
@@ -193,6 +268,9 @@ class Scene {
   FieldSet carriedMissing_ = 0;  // integrator state the particles came without
   HashGrid<D> grid_;
   NeighbourList<D> neighbours_;
+  Real skin_;        // Verlet skin, a fraction of the support
+  Real listRadius_;  // support (1 + skin)
+  long listBuilds_ = 0;
   Real startTime_;
   Real time_;
   long step_ = 0;
@@ -226,11 +304,15 @@ std::optional<StateFailure> Scene<D>::resume(long step, Real time) {
                                  std::visit([](const auto& i) { return std::string(i.name); }, integrator_) +
                                  " carries from step to step (written with another integrator? resume with the "
                                  "run's own integrator)");
-  sort();
-  const auto& order = grid_.order();
-  for (std::size_t k = 0; k < P_.size(); ++k)
-    if (order[k] != k)
-      throw std::runtime_error("the snapshot is not in the order sph keeps its particles (written by another program?)");
+  if (skin_ > 0) {
+    rebuildRecordedList();
+  } else {
+    sort();
+    const auto& order = grid_.order();
+    for (std::size_t k = 0; k < P_.size(); ++k)
+      if (order[k] != k)
+        throw std::runtime_error("the snapshot is not in the order sph keeps its particles (written by another program?)");
+  }
   model_.refreshCspmMatrices(P_, neighbours_);
   return finishStep([](std::size_t) {});
 }
@@ -260,7 +342,8 @@ std::optional<StateFailure> Scene<D>::step(Real landOn) {
       [&](const auto& integrator) {
         context_.densityRateApart = std::decay_t<decltype(integrator)>::kDensityRateApart;
         integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain, [&] {
-          P_.refreshGhosts();
+          if (skin_ == 0) P_.refreshGhosts();
+          else prepareList();
           model_.densityRate(P_, neighbours_);
         });
         failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
@@ -290,12 +373,43 @@ Energy Scene<D>::energy() const {
 
 template <int D>
 void Scene<D>::sort() {
-  sortByCell(P_, grid_, neighbours_, model_.support(), ghosts_ ? &*ghosts_ : nullptr);
+  sortByCell(P_, grid_, neighbours_, listRadius_, ghosts_ ? &*ghosts_ : nullptr, skin_ > 0);
+  ++listBuilds_;
+  if (skin_ > 0) std::copy(P_.x.begin(), P_.x.begin() + static_cast<std::ptrdiff_t>(P_.size()), P_.xList.begin());
+}
+
+// The snapshot holds the particles in the order of the last build and, in
+// xList, where they were then: sorting them at those positions again must
+// leave them in place (else the snapshot is not one sph wrote), and builds
+// the same ghosts, grid and list. Then back to the current positions. A
+// snapshot without the record (all zero: written with no skin) gets a list
+// at its current positions.
+template <int D>
+void Scene<D>::rebuildRecordedList() {
+  const std::size_t n = P_.size();
+  const auto owned = static_cast<std::ptrdiff_t>(n);
+  const bool recorded = std::any_of(P_.xList.begin(), P_.xList.begin() + owned,
+                                    [](const Vec<D>& x) { return x != Vec<D>::Zero(); });
+  if (!recorded) {
+    sort();
+    return;
+  }
+  std::vector<Vec<D>> now(P_.x.begin(), P_.x.begin() + owned);  // once, at the start
+  std::copy(P_.xList.begin(), P_.xList.begin() + owned, P_.x.begin());
+  sort();
+  const auto& order = grid_.order();
+  for (std::size_t k = 0; k < n; ++k)
+    if (order[k] != k)
+      throw std::runtime_error(
+          "the snapshot is not in the order sph keeps its particles at its list_build_position (written by another "
+          "program?)");
+  std::copy(now.begin(), now.end(), P_.x.begin());
+  P_.refreshGhosts(fieldBit(kFieldX));
 }
 
 template <int D>
 void Scene<D>::evaluate() {
-  sort();
+  prepareList();
   model_.evaluate(P_, neighbours_, context_);
 }
 

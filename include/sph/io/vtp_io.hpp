@@ -6,7 +6,8 @@
 // allocated field of the field table that has a snapshot name (fields.hpp):
 // velocity, acceleration (3 components, also in 2D), density, pressure,
 // mass, id, and when present density_rate, kind, xsph_velocity, colour,
-// colour_normal, curvature, velocity_previous, density_previous, each with its SI unit as the UNITS_LABEL
+// colour_normal, curvature, velocity_previous, density_previous,
+// list_build_position, each with its SI unit as the UNITS_LABEL
 // information key (Pa or N/m, ...: snapshot_polydata.hpp). Field data:
 // TimeValue (ParaView's time key), step, smoothing_length, dimension,
 // particle_spacing, and domain_min/domain_max (D values each) when the
@@ -47,6 +48,7 @@ struct VtpParticles {
   std::vector<Real> colour;      // surface tension: the particles' phase colour
   std::vector<std::array<Real, 3>> vPrev;  // two-step leap-frog: filtered velocity and density of the step before
   std::vector<Real> rhoPrev;
+  std::vector<std::array<Real, 3>> xList;  // positions at the neighbour list's last build (neighbour_skin > 0)
 };
 
 // Reads the particles of a .vtp (src/vtp_read.cpp): one PolyData piece, in
