@@ -174,7 +174,7 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   if (c.integrator == "euler") warn("integrator euler (explicit Euler) gains energy every step whatever dt: use leap_frog");
 
   // Walls and kernels.
-  if (c.walls && (wallTreatment(c) == WallTreatment::kDummy || wallTreatment(c) == WallTreatment::kDynamic)) {
+  if (activeBoundary(c).particles == WallLattice::kLayers) {
     const int needed = wallLayersNeeded(c), layers = wallLayersUsed(c);
     out << "  wall layers      " << layers << " (the support needs " << needed << ")\n";
     if (layers < needed) warn("fewer wall layers than the support needs: particles near a wall see a gap and leak");

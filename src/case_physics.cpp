@@ -70,7 +70,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
   const bool particleWalls = wallParticles(c);
   const DensityTreatment density = densityTreatment(c);
   if (seed) {
-    if (wallTreatment(c) != WallTreatment::kNoParticles)
+    if (boundaryChoice(c).wallParticles())
       throw CaseError("boundary = \"" + c.boundary + "\": model seed_wcsph has the seed's reflecting walls only; "
                       "use model = \"wcsph\"");
     if (density != DensityTreatment::kSummation || c.hydrostaticStart || c.negativePressure != "none" || !c.obstacleMin.empty())
@@ -98,9 +98,6 @@ void validateWallsAndDensity(const CaseConfig& c) {
       throw CaseError("initial_flow = \"taylor_green\" needs a square domain: domain_max - domain_min is " + significant(Lx) +
                       " x " + significant(Ly) + " m");
   }
-  if (wallTreatment(c) == WallTreatment::kDynamic && density != DensityTreatment::kContinuity)
-    throw CaseError("boundary = \"dynamic\" needs density = \"continuity\" (dynamic wall particles carry a "
-                    "density by the continuity equation)");
   if (c.delta > 0 && density != DensityTreatment::kContinuity)
     throw CaseError("delta = " + std::to_string(c.delta) + " needs density = \"continuity\" (density diffusion "
                     "acts on the continuity equation)");
@@ -141,7 +138,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
     if (c.lidVelocity.size() != D)
       throw CaseError("lid_velocity has " + std::to_string(c.lidVelocity.size()) + " values: it needs " +
                       std::to_string(D) + " (one per dimension)");
-    if (!(c.lid && c.walls && wallTreatment(c) == WallTreatment::kDummy))
+    if (!(c.lid && c.walls && readsKey(boundaryRow(c), "lid_velocity")))
       throw CaseError("lid_velocity needs a lid of dummy wall particles: lid = true, boundary = \"dummy\"");
     if (c.lidVelocity[D - 1] != 0)
       throw CaseError("lid_velocity = [..., " + significant(c.lidVelocity[D - 1]) +
@@ -151,14 +148,8 @@ void validateWallsAndDensity(const CaseConfig& c) {
   if (c.hydrostaticStart && c.blockMax.empty() && c.discRadius.empty())
     throw CaseError("hydrostatic_start needs a fluid block or disc (block_min/block_max, disc_center/disc_radius): "
                     "the top of each body is the free surface its hydrostatic pressure starts from");
-  if (particleWalls && wallTreatment(c) != WallTreatment::kRepulsive) {
-    const int needed = wallLayersNeeded(c);
-    if (c.wallLayers > 0 && c.wallLayers < needed && !c.wallLayersOverride)
-      throw CaseError("wall_layers = " + std::to_string(c.wallLayers) + " is too few: the kernel support (" +
-                      c.kernel + ", h = " + std::to_string(c.h) + ", spacing = " + std::to_string(c.spacing) +
-                      ") needs " + std::to_string(needed) +
-                      " layers (give wall_layers_override = true to run with fewer, and see the fluid leak)");
-  }
+  // The chosen boundary's own rules (boundaries/*.hpp).
+  if (const auto& boundary = boundaryRow(c); boundary.validate) boundary.validate(c);
 }
 
 void validateTension(const CaseConfig& c) {
