@@ -176,7 +176,7 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   if (integrator.unstable) warn("integrator " + c.integrator + " " + integrator.unstable + ": use " + kDefaultIntegrator);
 
   // Walls and kernels.
-  if (c.walls && (wallTreatment(c) == WallTreatment::kDummy || wallTreatment(c) == WallTreatment::kDynamic)) {
+  if (activeBoundary(c).particles == WallLattice::kLayers) {
     const int needed = wallLayersNeeded(c), layers = wallLayersUsed(c);
     out << "  wall layers      " << layers << " (the support needs " << needed << ")\n";
     if (layers < needed) warn("fewer wall layers than the support needs: particles near a wall see a gap and leak");

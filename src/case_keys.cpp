@@ -20,7 +20,6 @@ std::vector<std::string> viscosityNames() { return methodNames(viscosityMethods(
 std::vector<std::string> integratorNames() { return methodNames(integratorMethods<2>()); }
 std::vector<std::string> modelNames() { return methodNames(modelMethods()); }
 std::vector<std::string> boundaryNames() { return methodNames(boundaryMethods()); }
-std::vector<std::string> slipNames() { return {"no_slip", "free_slip"}; }
 std::vector<std::string> densityNames() { return methodNames(densityMethods()); }
 std::vector<std::string> negativePressureNames() { return methodNames(negativePressureMethods()); }
 std::vector<std::string> densityReinitNames() { return methodNames(densityReinitMethods()); }
@@ -145,28 +144,11 @@ const std::vector<KeySpec>& caseKeys() {
        "Body acceleration as a vector, D values, any direction (e.g. [0, -9.81], or [1e-4, 0] to drive a channel "
        "flow); replaces g, which must then not be given",
        within(-1e6, 1e6), "[0, -g] / [0, 0, -g]", nullptr},
-      {"restitution", G::kPhysics, &C::restitution, "",
-       "Reflecting walls: the normal velocity becomes -e times itself", within(0, 1), nullptr, nullptr},
       // Walls and density (model wcsph)
       {"boundary", G::kPhysics, &C::boundary, "",
        "How the walls act: reflecting (clamp and reflect), or wall particles: dummy (Adami 2012), dynamic "
        "(Crespo 2007, needs density continuity), repulsive (Liu 2012)",
        {}, nullptr, boundaryNames},
-      {"wall_layers", G::kPhysics, &C::wallLayers, "", "Layers of dummy or dynamic wall particles (0: as many as the kernel support needs)",
-       count(0, 100), "as many as needed", nullptr},
-      {"wall_layers_override", G::kPhysics, &C::wallLayersOverride, "",
-       "Allow fewer wall layers than the support needs (the fluid then leaks; for tests of leakage)", {}, nullptr,
-       nullptr},
-      {"lid", G::kPhysics, &C::lid, "", "Wall particles on the top of the box too (a closed tank)", {}, nullptr, nullptr},
-      {"wall_guard", G::kPhysics, &C::wallGuard, "",
-       "Wall particles (dummy, dynamic, repulsive): a fluid particle that crosses a wall surface is put back onto it "
-       "and loses its velocity into the wall (counted in the summary; --no-wall_guard: the bare boundary, which may leak)",
-       {}, nullptr, nullptr},
-      {"lid_velocity", G::kPhysics, &C::lidVelocity, "m/s",
-       "The lid (lid = true, boundary dummy) slides with this constant velocity, D values along its plane (a "
-       "Couette plate, a lid-driven cavity); its particles stay in place and show the fluid that velocity",
-       within(-1e6, 1e6), "at rest", nullptr},
-      {"wall_slip", G::kPhysics, &C::wallSlip, "", "Dummy and dynamic walls in the viscous term", {}, nullptr, slipNames},
       {"obstacle_min", G::kScene, &C::obstacleMin, "m", "Solid boxes of wall particles inside the domain: lower corners, D values per box",
        coordinate(), "none", nullptr},
       {"obstacle_max", G::kScene, &C::obstacleMax, "m", "Solid boxes: upper corners, D values per box", coordinate(), "none",
@@ -299,6 +281,7 @@ const std::vector<KeySpec>& caseKeys() {
     insertMethodParameters(rows, "shifting", shiftingMethods());
     insertMethodParameters(rows, "surface_tension", surfaceTensionMethods());
     insertMethodParameters(rows, "density_reinit", densityReinitMethods());
+    insertMethodParameters(rows, "boundary", boundaryMethods());
     return rows;
   }();
   return keys;

@@ -70,7 +70,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
   const bool particleWalls = wallParticles(c);
   const DensityTreatment density = densityTreatment(c);
   if (seed) {
-    if (wallTreatment(c) != WallTreatment::kNoParticles)
+    if (boundaryChoice(c).wallParticles())
       throw CaseError("boundary = \"" + c.boundary + "\": model seed_wcsph has the seed's reflecting walls only; "
                       "use model = \"wcsph\"");
     if (density != DensityTreatment::kSummation || c.hydrostaticStart || clampNegativePressure(c) || !c.obstacleMin.empty())
@@ -80,9 +80,6 @@ void validateWallsAndDensity(const CaseConfig& c) {
   if (c.backgroundPressure != 0 && (seed || !readsKey(chosenEos(c), "background_pressure")))
     throw CaseError("background_pressure = " + significant(c.backgroundPressure) +
                     " needs model = \"wcsph\" with eos = \"linear\" or \"tait\"");
-  if (wallTreatment(c) == WallTreatment::kDynamic && density != DensityTreatment::kContinuity)
-    throw CaseError("boundary = \"dynamic\" needs density = \"continuity\" (dynamic wall particles carry a "
-                    "density by the continuity equation)");
   if ((particleWalls || !c.obstacleMin.empty()) && !(c.spacing > 0))
     throw CaseError("boundary = \"" + c.boundary + "\" builds wall particles on the fluid lattice: give spacing (> 0)");
   if (!c.obstacleMin.empty() && !particleWalls)
@@ -120,7 +117,7 @@ void validateWallsAndDensity(const CaseConfig& c) {
     if (c.lidVelocity.size() != D)
       throw CaseError("lid_velocity has " + std::to_string(c.lidVelocity.size()) + " values: it needs " +
                       std::to_string(D) + " (one per dimension)");
-    if (!(c.lid && c.walls && wallTreatment(c) == WallTreatment::kDummy))
+    if (!(c.lid && c.walls && readsKey(boundaryRow(c), "lid_velocity")))
       throw CaseError("lid_velocity needs a lid of dummy wall particles: lid = true, boundary = \"dummy\"");
     if (c.lidVelocity[D - 1] != 0)
       throw CaseError("lid_velocity = [..., " + significant(c.lidVelocity[D - 1]) +
@@ -130,14 +127,8 @@ void validateWallsAndDensity(const CaseConfig& c) {
   if (c.hydrostaticStart && c.blockMax.empty() && c.discRadius.empty())
     throw CaseError("hydrostatic_start needs a fluid block or disc (block_min/block_max, disc_center/disc_radius): "
                     "the top of each body is the free surface its hydrostatic pressure starts from");
-  if (particleWalls && wallTreatment(c) != WallTreatment::kRepulsive) {
-    const int needed = wallLayersNeeded(c);
-    if (c.wallLayers > 0 && c.wallLayers < needed && !c.wallLayersOverride)
-      throw CaseError("wall_layers = " + std::to_string(c.wallLayers) + " is too few: the kernel support (" +
-                      c.kernel + ", h = " + std::to_string(c.h) + ", spacing = " + std::to_string(c.spacing) +
-                      ") needs " + std::to_string(needed) +
-                      " layers (give wall_layers_override = true to run with fewer, and see the fluid leak)");
-  }
+  // The chosen boundary's own rules (boundaries/*.hpp).
+  if (const auto& boundary = boundaryRow(c); boundary.validate) boundary.validate(c);
 }
 
 void validateTension(const CaseConfig& c) {

@@ -378,12 +378,12 @@ InitialState<D> buildInitialState(const ResolvedCase& c) {
     const EquationOfState eos = methodRow(eosMethods(), "eos", c.eos).make(c);
     // Wall particles take the highest body's surface.
     const Real top = s.surface.empty() ? 0 : *std::max_element(s.surface.begin(), s.surface.end());
-    const bool dummyWalls = wallTreatment(c) == WallTreatment::kDummy;
+    const bool wallMassFixed = boundaryChoice(c).wallDensityFromFluid;
     for (std::size_t i = 0; i < P.size(); ++i) {
       const Real H = i < s.surface.size() ? s.surface[i] : (i < nFluid ? P.x[i][D - 1] : top);
       const Real p = std::max(Real(0), c.rho0 * -gravityVector<D>(c)[D - 1] * (H - P.x[i][D - 1]));
       P.rho[i] = std::visit([&](const auto& e) { return e.density(p + c.backgroundPressure); }, eos);
-      if (i < nFluid || !dummyWalls) P.m[i] *= P.rho[i] / c.rho0;
+      if (i < nFluid || !wallMassFixed) P.m[i] *= P.rho[i] / c.rho0;
     }
   }
   if (wcsph && initialFlow(c) == InitialFlow::kTaylorGreen) addTaylorGreenFlow(P, c);

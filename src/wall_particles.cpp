@@ -66,7 +66,7 @@ int wallLayersNeeded(const CaseConfig& c) {
 template <int D>
 std::vector<Vec<D>> wallParticlePositions(const CaseConfig& c, int layers) {
   std::vector<Vec<D>> out;
-  const bool repulsive = wallTreatment(c) == WallTreatment::kRepulsive;
+  const bool repulsive = boundaryChoice(c).particles == WallLattice::kOnSurface;
   const Real dx = c.spacing;
   {
     // No walls on periodic faces: along a periodic axis the lattice is the

@@ -142,10 +142,10 @@ void constantDensity() {
       s.setDensity([&](const Vec<D>& x) { return s.field(x); });
       CorrectionCounts counts;
       const EquationOfState eos = LinearEos{100, 1000};
-      if (method == 0) ShepardDensityPass<D>{s.kernel, 10, wallsInSums, eos}.run(s.P, s.neighbours, reinitStep(&counts));
-      if (method == 1) MlsDensityPass<D>{s.kernel, 10, wallsInSums, eos}.run(s.P, s.neighbours, reinitStep(&counts));
+      if (method == 0) ShepardDensityPass<D>{s.kernel, 10, WallSums{wallsInSums}, eos}.run(s.P, s.neighbours, reinitStep(&counts));
+      if (method == 1) MlsDensityPass<D>{s.kernel, 10, WallSums{wallsInSums}, eos}.run(s.P, s.neighbours, reinitStep(&counts));
       if (method == 2) {
-        SummationDensityPass<D>{DensityKernel<WendlandC2<D>>{s.kernel}, eos, wallsInSums}.run(s.P, s.neighbours, {});
+        SummationDensityPass<D>{DensityKernel<WendlandC2<D>>{s.kernel}, eos, WallSums{wallsInSums}}.run(s.P, s.neighbours, {});
         BOOST_TEST(maxRelativeError(s, &Setup<D>::nearSurface) > 0.2);
         continue;
       }
@@ -174,10 +174,10 @@ void linearDensity() {
       CorrectionCounts counts;
       const EquationOfState eos = LinearEos{100, 1000};
       if (method == 0) {
-        ShepardDensityPass<D>{s.kernel, 10, wallsInSums, eos}.run(s.P, s.neighbours, reinitStep(&counts));
+        ShepardDensityPass<D>{s.kernel, 10, WallSums{wallsInSums}, eos}.run(s.P, s.neighbours, reinitStep(&counts));
         BOOST_TEST(maxRelativeError(s, &Setup<D>::nearSurface) > 5e-4);
       } else {
-        MlsDensityPass<D>{s.kernel, 10, wallsInSums, eos}.run(s.P, s.neighbours, reinitStep(&counts));
+        MlsDensityPass<D>{s.kernel, 10, WallSums{wallsInSums}, eos}.run(s.P, s.neighbours, reinitStep(&counts));
         BOOST_TEST(maxRelativeError(s) < 1e-10, "walls in sums " << wallsInSums);
         BOOST_TEST(counts.mlsFallbacks == 2);  // the isolated pair only
       }
@@ -203,7 +203,7 @@ void cspmGradient() {
   CorrectionCounts counts;
   StepContext ctx;
   ctx.counts = &counts;
-  const unsigned prePass = CspmCorrectionPass<D>{s.kernel, true}.run(s.P, s.neighbours, ctx);
+  const unsigned prePass = CspmCorrectionPass<D>{s.kernel, WallSums{}}.run(s.P, s.neighbours, ctx);
   BOOST_TEST(prePass == term_bits::kCspmCorrection);
   BOOST_TEST(counts.cspmParticles == static_cast<long>(s.P.fluidCount()));
   BOOST_TEST(counts.cspmFallbacks >= 2);
@@ -290,7 +290,7 @@ void cspmContinuityFollowsThePacking() {
   Setup<D> s;
   s.setDensity([](const Vec<D>&) { return 1000.0; });
   StepContext ctx;
-  CspmCorrectionPass<D>{s.kernel, true}.run(s.P, s.neighbours, ctx);
+  CspmCorrectionPass<D>{s.kernel, WallSums{}}.run(s.P, s.neighbours, ctx);
   std::size_t strongly = 0;  // particles whose L_i is far from I
   for (std::size_t i = 0; i < s.P.fluidCount(); ++i) strongly += (s.P.cspmL[i] - Mat<D>::Identity()).norm() > 0.3;
   BOOST_TEST(strongly >= 10u);
@@ -380,7 +380,7 @@ BOOST_AUTO_TEST_CASE(periodic_faces_see_their_images) {
   CorrectionCounts counts;
   StepContext ctx;
   ctx.counts = &counts;
-  CspmCorrectionPass<2>{kernel, true}.run(P, neighbours, ctx);
+  CspmCorrectionPass<2>{kernel, WallSums{}}.run(P, neighbours, ctx);
   BOOST_TEST(counts.cspmFallbacks == 0);
   ColourFieldPass<2>{kernel, CurvatureMethod::kMorris, 0.1 / kH, false}.run(P, neighbours, ctx);
   Real worstL = 0, worstN = 0;

@@ -13,6 +13,10 @@
 #include "sph/case_keys.hpp"
 #include "sph/io/number_format.hpp"
 #include "sph/method_defaults.hpp"
+#include "sph/boundaries/dummy_boundary.hpp"
+#include "sph/boundaries/dynamic_crespo2007.hpp"
+#include "sph/boundaries/reflecting_boundary.hpp"
+#include "sph/boundaries/repulsive_boundary.hpp"
 #include "sph/integrators/integrators.hpp"
 #include "sph/kernels/kernels.hpp"
 #include "sph/models/wcsph.hpp"
@@ -233,22 +237,44 @@ const std::vector<Method<Integrator<D>, IntegratorAdvice>>& integratorMethods() 
   return m;
 }
 
-// Wall treatments. "reflecting" builds no wall particles: the scene clamps
-// and reflects particles at the walls (boundaries/damped_reflecting_walls.hpp).
-inline const std::vector<Method<WallTreatment>>& boundaryMethods() {
-  static const std::vector<Method<WallTreatment>> m = {
-      {"reflecting", "damped reflecting walls: clamp at distance h, normal velocity -e times itself (the seed's)",
-       {"restitution"}, [](const CaseConfig&) { return WallTreatment::kNoParticles; }},
-      {"dummy", "dummy wall particles with pressure extrapolated from the fluid (Adami, Hu & Adams 2012)",
-       {"wall_layers", "wall_layers_override", "lid", "lid_velocity", "wall_slip", "obstacle_min", "obstacle_max"},
-       [](const CaseConfig&) { return WallTreatment::kDummy; }},
-      {"dynamic", "dynamic boundary particles: density by continuity, pressure by the EOS (Crespo et al. 2007)",
-       {"wall_layers", "wall_layers_override", "lid", "wall_slip", "obstacle_min", "obstacle_max"},
-       [](const CaseConfig&) { return WallTreatment::kDynamic; }},
-      {"repulsive", "one layer of repulsive particles at dx/2 on the wall (seed document 004, after Liu et al. 2012)",
-       {"lid", "obstacle_min", "obstacle_max"}, [](const CaseConfig&) { return WallTreatment::kRepulsive; }},
+// Boundaries: one type per boundary (boundaries/*_boundary.hpp), its row
+// made from the type (name, summary, keys, validate, the Boundary value).
+template <class B>
+Method<Boundary> boundaryMethod() {
+  Method<Boundary> row{B::name, B::summary, B::reads, [](const CaseConfig&) { return describeBoundary<B>(); }};
+  row.params.rows = B::keys();
+  row.validate = &B::validate;
+  return row;
+}
+inline std::vector<Method<Boundary>>& boundaryRegistry() {
+  static std::vector<Method<Boundary>> m = {
+      boundaryMethod<ReflectingBoundary>(),
+      boundaryMethod<DummyBoundary>(),
+      boundaryMethod<DynamicBoundary>(),
+      boundaryMethod<RepulsiveBoundary>(),
   };
   return m;
+}
+inline const std::vector<Method<Boundary>>& boundaryMethods() { return boundaryRegistry(); }
+// A boundary defined elsewhere (a test's), added after the built-in ones
+// for as long as the returned registration lives.
+struct BoundaryRegistration {
+  const char* name;
+  BoundaryRegistration(const BoundaryRegistration&) = delete;
+  BoundaryRegistration& operator=(const BoundaryRegistration&) = delete;
+  ~BoundaryRegistration() {
+    auto& rows = boundaryRegistry();
+    for (auto it = rows.begin(); it != rows.end(); ++it)
+      if (it->name == name) {
+        rows.erase(it);
+        break;
+      }
+  }
+};
+template <class B>
+BoundaryRegistration registerBoundary() {
+  boundaryRegistry().push_back(boundaryMethod<B>());
+  return BoundaryRegistration{B::name};
 }
 
 // Density diffusion (terms/density_diffusion.hpp): the form of the delta-SPH
@@ -545,12 +571,13 @@ void noteUnusedMethodKeys(const CaseConfig& c, Note&& note) {
   noteUnreadParameters(viscosityMethods(), "viscosity", c.viscosity, note);
 }
 
-// How the walls act (boundary key, whether or not the box has walls), and
-// whether the case has wall particles (walls on, a particle boundary).
-inline WallTreatment wallTreatment(const CaseConfig& c) {
-  return methodRow(boundaryMethods(), "boundary", c.boundary).make(c);
-}
-inline bool wallParticles(const CaseConfig& c) { return c.walls && wallTreatment(c) != WallTreatment::kNoParticles; }
+// The boundary key's row and its boundary (whether or not the box has
+// walls); the boundary that acts (none without walls); whether the case has
+// wall particles.
+inline const Method<Boundary>& boundaryRow(const CaseConfig& c) { return methodRow(boundaryMethods(), "boundary", c.boundary); }
+inline Boundary boundaryChoice(const CaseConfig& c) { return boundaryRow(c).make(c); }
+inline Boundary activeBoundary(const CaseConfig& c) { return c.walls ? boundaryChoice(c) : Boundary{}; }
+inline bool wallParticles(const CaseConfig& c) { return activeBoundary(c).wallParticles(); }
 
 // How the density is found (density key).
 inline DensityTreatment densityTreatment(const CaseConfig& c) {

@@ -66,7 +66,7 @@ Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>>
   if (c.damping > 0) spec.bodies.damping = LinearDamping<D>{c.damping};
   spec.density = densityTreatment(c);
   spec.diffusion = densityDiffusion(c);
-  spec.walls = c.walls ? wallTreatment(c) : WallTreatment::kNoParticles;
+  spec.boundary = activeBoundary(c);
   spec.noSlip = c.wallSlip == "no_slip";
   spec.spacing = c.spacing;
   spec.clampNegative = clampNegativePressure(c);
@@ -85,44 +85,13 @@ Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>>
   return makeWcsph<D>(spec);
 }
 
-// The case's obstacle boxes (obstacle_min/obstacle_max), in order.
-template <int D>
-std::vector<AxisBox<D>> obstacleBoxes(const CaseConfig& c) {
-  std::vector<AxisBox<D>> boxes;
-  for (std::size_t k = 0; k + D <= c.obstacleMin.size() && k + D <= c.obstacleMax.size(); k += D)
-    boxes.push_back({toVec<D>({c.obstacleMin.begin() + k, c.obstacleMin.begin() + k + D}),
-                     toVec<D>({c.obstacleMax.begin() + k, c.obstacleMax.begin() + k + D})});
-  return boxes;
-}
-
-// The guard at the wall particles' surfaces: the faces of the domain box
-// that have walls (not periodic, not an open top) and every obstacle box.
-template <int D>
-WallGuard<D> makeWallGuard(const ResolvedCase& c) {
-  WallGuard<D> guard;
-  const unsigned periodic = periodicAxes(c);
-  for (int d = 0; d < D; ++d) {
-    if ((periodic >> d) & 1u) continue;
-    guard.lo[d] = c.domainMin[static_cast<std::size_t>(d)];
-    if (d < D - 1 || c.lid) guard.hi[d] = c.domainMax[static_cast<std::size_t>(d)];
-  }
-  guard.obstacles = obstacleBoxes<D>(c);
-  guard.paddle = static_cast<int>(c.paddle) - 1;
-  return guard;
-}
-
-// Damped reflecting walls (the reflecting boundary), none for other
-// boundaries or without walls. They act on the faces of the domain box:
-// along a periodic axis their faces are at infinity.
+// The damped reflecting walls of the case's boundary constraint, if it
+// has them (boundaries/reflecting_boundary.hpp), else none.
 template <int D>
 std::optional<DampedReflectingWalls<D>> makeReflectingWalls(const ResolvedCase& c) {
-  if (!c.walls || wallTreatment(c) != WallTreatment::kNoParticles) return std::nullopt;
-  Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
-  const unsigned periodic = periodicAxes(c);
-  for (int d = 0; d < D; ++d)
-    if ((periodic >> d) & 1u) lo[d] = -std::numeric_limits<Real>::infinity(), hi[d] = std::numeric_limits<Real>::infinity();
-  return DampedReflectingWalls<D>{lo, hi, c.h, c.restitution,
-                                  composedModel(c) ? ReflectionRule::kApproaching : ReflectionRule::kSeed};
+  const WallConstraint<D> constraint = activeBoundary(c).hooks<D>().constraint(c);
+  if (const auto* walls = constraint.reflecting()) return *walls;
+  return std::nullopt;
 }
 
 // The wall guard (wall_guard key) acts at wall-particle boundaries only.
@@ -141,27 +110,21 @@ Scene<D> makeScene(const ResolvedCase& c, InitialState<D> init,
                    Real startTime = std::numeric_limits<Real>::quiet_NaN()) {
   const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
   const PeriodicBox<D> periodic{lo, hi - lo, periodicAxes(c)};
-  const std::optional<DampedReflectingWalls<D>> walls = makeReflectingWalls<D>(c);
+  const Boundary boundary = activeBoundary(c);
+  const BoundaryHooks<D>& hooks = boundary.hooks<D>();
   if (std::isnan(startTime)) startTime = init.startTime;
   StateCheck<D> check(lo, hi);
-  check.wallParticles = wallParticles(c);
-  if (check.wallParticles) check.tolerance = c.spacing / 2;
-  check.openTop = check.wallParticles && !c.lid;
-  // (The paddle moves: fluid inside it is not looked for.)
-  const auto boxes = obstacleBoxes<D>(c);
-  for (std::size_t k = 0; k < boxes.size(); ++k)
-    if (static_cast<long>(k) + 1 != c.paddle) check.obstacles.push_back(boxes[k]);
+  hooks.stateCheck(check, c);
   const auto motion = makeWallMotion<D>(c, init.particles.fluidCount());
   if (motion) {
     // The paddle's velocity at the start (its particles come at rest).
     for (std::size_t i = init.particles.fluidCount(); i < init.particles.size(); ++i)
       if (motion->moves(init.particles.id[i])) init.particles.v[i] = motion->velocity(startTime);
   }
-  Scene<D> scene(std::move(init.particles), makeModel<D>(c, motion), walls, check, TimeStepControl{c.dt, c.cfl, c.endTime},
+  Scene<D> scene(std::move(init.particles), makeModel<D>(c, motion), hooks.constraint(c), check, TimeStepControl{c.dt, c.cfl, c.endTime},
                  startTime, makeIntegrator<D>(c.integrator), c.neighbourSkin);
   if (periodic.any()) scene.setPeriodic(periodic);
   if (motion) scene.setWallMotion(*motion);
-  if (wallGuardOn(c)) scene.setWallGuard(makeWallGuard<D>(c));
   if (shiftingOn(c))
     scene.setShifting(ParticleShifting<D>(makeKernel<D>(c), c.shiftingCoefficient, c.spacing, c.rho0));
   return scene;

@@ -36,8 +36,7 @@
 // act on the finished state. The integrator is a variant resolved once per step.
 #pragma once
 
-#include "sph/boundaries/damped_reflecting_walls.hpp"
-#include "sph/boundaries/wall_guard.hpp"
+#include "sph/boundaries/boundary.hpp"
 #include "sph/hash_grid.hpp"
 #include "sph/integrators/integrators.hpp"
 #include "sph/mass_scaling.hpp"
@@ -71,7 +70,8 @@ struct Energy {
 template <int D>
 class Scene {
  public:
-  Scene(Particles<D> particles, Model<D> model, std::optional<DampedReflectingWalls<D>> walls,
+  // walls: the boundary's per-particle constraint (boundaries/boundary.hpp).
+  Scene(Particles<D> particles, Model<D> model, WallConstraint<D> walls,
         StateCheck<D> check, TimeStepControl timeStep, Real startTime = 0,
         Integrator<D> integrator = LeapFrog<D>{}, Real neighbourSkin = 0)
       : P_(std::move(particles)),
@@ -128,8 +128,6 @@ class Scene {
   void setShifting(ParticleShifting<D> shifting) { shifting_.emplace(std::move(shifting)); }
   // A paddle's prescribed motion, moved at the start of every step (wall_motion.hpp).
   void setWallMotion(const SinusoidalWallMotion<D>& motion) { wallMotion_ = motion; }
-  // The no-penetration guard at the wall particles' surfaces (boundaries/wall_guard.hpp).
-  void setWallGuard(WallGuard<D> guard) { guard_.emplace(std::move(guard)); }
   // How often the guard put a fluid particle back (position updates it changed).
   long wallGuardActions() const { return guardActions_; }
 
@@ -257,13 +255,12 @@ class Scene {
   Particles<D> P_;
   Model<D> model_;
   Integrator<D> integrator_;
-  std::optional<DampedReflectingWalls<D>> walls_;
+  WallConstraint<D> walls_;  // reflecting clamp, wall guard or none
   StateCheck<D> check_;
   TimeStepControl timeStep_;
   std::optional<PeriodicGhosts<D>> ghosts_;
   std::optional<ParticleShifting<D>> shifting_;
   std::optional<SinusoidalWallMotion<D>> wallMotion_;
-  std::optional<WallGuard<D>> guard_;
   long guardActions_ = 0;
   FieldSet carriedMissing_ = 0;  // integrator state the particles came without
   HashGrid<D> grid_;
@@ -322,14 +319,14 @@ std::optional<StateFailure> Scene<D>::step(Real landOn) {
   const TimeStepChoice choice = timeStep_.next(extremes_, model_, time_, landOn);
   lastStep_ = choice;
   context_ = StepContext{step_ + 1, time_ + choice.dt, choice.dt};
-  if (guard_ && wallMotion_ && guard_->paddle >= 0) {
-    guard_->paddleOffset = wallMotion_->displacement(time_ + choice.dt);  // the case places it at t = 0, where sin = 0
-    guard_->paddleVelocity = wallMotion_->velocity(time_ + choice.dt);
+  WallGuard<D>* guard = walls_.guard();
+  if (guard && wallMotion_ && guard->paddle >= 0) {
+    guard->paddleOffset = wallMotion_->displacement(time_ + choice.dt);  // the case places it at t = 0, where sin = 0
+    guard->paddleVelocity = wallMotion_->velocity(time_ + choice.dt);
   }
   long guarded = 0;
   auto constrain = [&](Particles<D>& P, std::size_t i) {
-    if (walls_) (*walls_)(P, i);
-    if (guard_ && (*guard_)(P, i)) {
+    if (walls_(P, i)) {
 #pragma omp atomic
       ++guarded;
     }

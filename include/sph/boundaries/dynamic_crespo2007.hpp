@@ -17,3 +17,35 @@
 // stands off the wall by about one smoothing length, and the first fluid
 // layer's pressure is a little noisy (Crespo et al. 2007).
 #pragma once
+
+#include "sph/boundaries/dummy_boundary.hpp"
+#include "sph/boundaries/wall_particle_boundary.hpp"
+
+namespace sph {
+
+inline bool continuityDensity(const CaseConfig& c);  // methods.hpp
+
+// Boundary "dynamic": the EOS pass runs over the walls and the force pass
+// gives them a density rate (WallSums::densityRates); no pass of its own.
+struct DynamicBoundary : WallParticleBoundary {
+  static constexpr const char* name = "dynamic";
+  static constexpr const char* summary =
+      "dynamic boundary particles: density by continuity, pressure by the EOS (Crespo et al. 2007)";
+  static constexpr WallSums kSums{true, true};
+  static inline const std::vector<const char*> reads{"wall_layers", "wall_layers_override", "lid",         "wall_slip",
+                                                     "wall_guard",  "obstacle_min",         "obstacle_max"};
+  static void validate(const CaseConfig& c) {
+    if (!continuityDensity(c))
+      throw CaseError("boundary = \"dynamic\" needs density = \"continuity\" (dynamic wall particles carry a "
+                      "density by the continuity equation)");
+    validateWallLayers(c);
+  }
+
+  template <int D>
+  static void beforeForces(BoundaryBuild<D>& b) {
+    b.info.needs |= fieldBit(kFieldVWall);
+    b.info.termNames.push_back("dynamic_walls_crespo2007");
+  }
+};
+
+}  // namespace sph

@@ -12,8 +12,9 @@
 // (Monaghan 1992; Monaghan 2005, "Smoothed particle hydrodynamics", Rep. Prog. Phys. 68.)
 //
 // Passes: summation density with the EOS (or the EOS of the integrated
-// density), the walls' pre-pass, the CSPM correction L_i when it is on,
-// the colour field when surface tension is on, then the fused force pass;
+// density), the boundary's passes before the forces (boundaries/*.hpp), the CSPM correction L_i when it is on,
+// the colour field when surface tension is on, then the fused force pass
+// and the boundary's passes after it (repulsive walls: their force);
 // after a step, the density re-initialisation (Shepard or MLS) every N
 // steps when it is on. A
 // viscosity set to none or a body force whose coefficient is zero is never
@@ -23,6 +24,7 @@
 
 #include <optional>
 
+#include "sph/boundaries/boundary.hpp"
 #include "sph/models/model.hpp"
 
 #include <string>
@@ -30,10 +32,6 @@
 namespace sph {
 
 enum class DensityTreatment { kSummation, kContinuity };
-// How the domain's walls are modelled: none or reflecting (no wall
-// particles; the reflecting walls are the scene's constraint), or wall
-// particles: dummy (Adami 2012), dynamic (Crespo 2007), repulsive (Liu 2012).
-enum class WallTreatment { kNoParticles, kDummy, kDynamic, kRepulsive };
 // Density re-initialisation every N steps (continuity density): none,
 // Shepard (zeroth order) or MLS (first order, Colagrossi & Landrieu 2003).
 enum class DensityReinit { kNone, kShepard, kMls };
@@ -49,7 +47,7 @@ struct WcsphSpec {
   Real xsphEpsilon = 0;
   DensityTreatment density = DensityTreatment::kSummation;
   DensityDiffusionChoice diffusion = {};  // delta-SPH (continuity; delta 0: off)
-  WallTreatment walls = WallTreatment::kNoParticles;
+  Boundary boundary{};         // how the walls act (boundaries/boundary.hpp; none by default)
   bool noSlip = true;          // dummy/dynamic walls in the viscous term
   Real spacing = 0;            // fluid spacing dx (repulsive walls)
   bool clampNegative = false;  // negative_pressure = clamp
@@ -100,14 +98,13 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back("xsph");
   }
 
-  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, false, {}, true, false, true, false, 0, 4, 0, std::nullopt};
-  forces.continuity = continuity;
+  const WallSums walls = s.boundary.sums;
+  WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, continuity, {}, walls,
+                           true, false, 0, 4, 0, std::nullopt};
   if (continuity && s.diffusion.delta > 0) {
     forces.diffusion = DensityDiffusion<D>::build(s.diffusion, h, c0, s.restDensity, g);
     info.termNames.push_back(s.diffusion.term);
   }
-  forces.wallPairs = s.walls != WallTreatment::kRepulsive;
-  forces.wallDensityRates = s.walls == WallTreatment::kDynamic;
   forces.wallViscosity = s.noSlip;
   forces.cspm = s.cspm;
 
@@ -127,34 +124,27 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
                              : s.curvature == CurvatureMethod::kCorrected ? "surface_tension_corrected_morris2000"
                                                                           : "surface_tension_morris2000");
   }
-  if (s.walls == WallTreatment::kDummy || s.walls == WallTreatment::kDynamic) info.needs |= fieldBit(kFieldVWall);
 
   std::vector<Pass<D>> passes;
+  const BoundaryHooks<D>& boundary = s.boundary.template hooks<D>();
+  BoundaryBuild<D> build{s, passes, info, g, c0, h};
   if (continuity) {
-    passes.push_back(EquationOfStatePass<D>{s.eos, s.walls == WallTreatment::kDynamic, s.clampNegative, s.restDensity});
+    passes.push_back(EquationOfStatePass<D>{s.eos, walls, s.clampNegative, s.restDensity});
   } else {
     const auto density = std::visit(
         [](const auto& k) { return DensityKernelChoice<D>(DensityKernel<std::decay_t<decltype(k)>>{k}); }, s.kernel);
     passes.push_back(
-        SummationDensityPass<D>{density, s.eos, s.walls != WallTreatment::kRepulsive, s.clampNegative});
+        SummationDensityPass<D>{density, s.eos, walls, s.clampNegative});
   }
-  if (s.walls == WallTreatment::kDummy) {
-    passes.push_back(AdamiWallsPass<D>{s.kernel, s.eos, g, s.noSlip, s.restDensity, s.wallMotion});
-    info.termNames.push_back("dummy_walls_adami2012");
-  }
-  if (s.walls == WallTreatment::kDynamic) info.termNames.push_back("dynamic_walls_crespo2007");
-  const bool wallsInSums = s.walls != WallTreatment::kRepulsive;
+  boundary.beforeForces(build);  // the walls' pre-pass (dummy walls: Adami's extrapolation)
   if (s.cspm) {
-    passes.push_back(CspmCorrectionPass<D>{s.kernel, wallsInSums});
+    passes.push_back(CspmCorrectionPass<D>{s.kernel, walls});
     info.needs |= fieldBit(kFieldCspmL);
     info.termNames.push_back("cspm_gradient_correction");
   }
   if (s.surfaceTension > 0) passes.push_back(ColourFieldPass<D>{s.kernel, s.curvature, s.surfaceThreshold / h, s.twoPhase});
   passes.push_back(forces);
-  if (s.walls == WallTreatment::kRepulsive) {
-    passes.push_back(RepulsiveWallsPass<D>{RepulsiveForce{c0 * c0, s.spacing, h}});
-    info.termNames.push_back("repulsive_walls_liu2012");
-  }
+  boundary.afterForces(build);  // repulsive walls: their force
   // The re-initialisations sum over the fluid only: between steps a dummy
   // wall's density is not its extrapolated one (that exists only inside an
   // evaluation), dynamic walls' is clamped at rho0 and repulsive walls have
@@ -162,9 +152,9 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   // of the hydrostatic tank to rho0 and let it through the floor.
   std::vector<Pass<D>> afterStep;
   if (s.reinit == DensityReinit::kShepard)
-    afterStep.push_back(ShepardDensityPass<D>{s.kernel, s.reinitEvery, false, s.eos, s.clampNegative});
+    afterStep.push_back(ShepardDensityPass<D>{s.kernel, s.reinitEvery, WallSums::fluidOnly(), s.eos, s.clampNegative});
   if (s.reinit == DensityReinit::kMls)
-    afterStep.push_back(MlsDensityPass<D>{s.kernel, s.reinitEvery, false, s.eos, s.clampNegative});
+    afterStep.push_back(MlsDensityPass<D>{s.kernel, s.reinitEvery, WallSums::fluidOnly(), s.eos, s.clampNegative});
   if (s.reinit != DensityReinit::kNone) {
     info.needs |= fieldBit(kFieldRhoReinit);
     info.termNames.push_back(s.reinit == DensityReinit::kShepard ? "shepard_density_reinit"

@@ -29,6 +29,7 @@
 // such particle-evaluation is counted and the run summary prints the count.
 #pragma once
 
+#include "sph/boundaries/wall_sums.hpp"
 #include "sph/kernels/kernels.hpp"
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
@@ -76,7 +77,7 @@ inline std::optional<Mat<D>> cspmCorrection(const Mat<D>& M) {
 template <int D>
 struct CspmCorrectionPass {
   Kernel<D> kernel;
-  bool wallsInSums = true;  // repulsive walls: false
+  WallSums walls{};  // what the walls add (not repulsive walls)
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
 };
@@ -91,7 +92,7 @@ unsigned CspmCorrectionPass<D>::run(Particles<D>& P, const NeighbourList<D>& nei
         {
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
           for (std::size_t i = 0; i < n; ++i) {
-            const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(i, P, neighbours, k, wallsInSums));
+            const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(i, P, neighbours, k, walls.inSums));
             if (L) {
               P.cspmL[i] = *L;
             } else {

@@ -7,6 +7,7 @@
 // is >= 0 and a free surface next to a wall does not stick to it.
 #pragma once
 
+#include "sph/boundaries/wall_sums.hpp"
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
 #include "sph/passes/step_context.hpp"
@@ -20,7 +21,7 @@ namespace sph {
 template <int D>
 struct EquationOfStatePass {
   EquationOfState eos;
-  bool walls = false;          // include the wall particles
+  WallSums walls{};            // densityRates: the wall particles carry a density (dynamic walls)
   bool clampNegative = false;  // negative_pressure = clamp
 
   Real rho0 = 0;               // walls: the least density they may have
@@ -31,8 +32,8 @@ struct EquationOfStatePass {
 // Defined here, instantiated once (src/instantiate_*.cpp).
 template <int D>
 unsigned EquationOfStatePass<D>::run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const {
-  const std::size_t n = walls ? P.size() : P.fluidCount();
-  if (walls)
+  const std::size_t n = walls.densityRates ? P.size() : P.fluidCount();
+  if (walls.densityRates)
     for (std::size_t i = P.fluidCount(); i < n; ++i) P.rho[i] = std::max(P.rho[i], rho0);
   std::visit([&](const auto& e) { computePressure(P, e, n, clampNegative); }, eos);
   return term_bits::kEquationOfState;

@@ -28,6 +28,7 @@
 // (shepard_density.hpp): fluid particles only, after a step.
 #pragma once
 
+#include "sph/boundaries/wall_sums.hpp"
 #include "sph/passes/shepard_density.hpp"
 
 #include <Eigen/Cholesky>
@@ -82,7 +83,7 @@ template <int D>
 struct MlsDensityPass {
   Kernel<D> kernel;
   long every = 20;             // steps between two re-initialisations
-  bool wallsInSums = true;     // repulsive walls: false
+  WallSums walls{};            // what the walls add (not repulsive walls)
   EquationOfState eos = LinearEos{1, 1};
   bool clampNegative = false;  // negative_pressure = clamp
 
@@ -100,11 +101,11 @@ unsigned MlsDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         {
 #pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
           for (std::size_t i = 0; i < n; ++i) {
-            const std::optional<Real> rho = mlsDensity(i, P, neighbours, k, wallsInSums);
+            const std::optional<Real> rho = mlsDensity(i, P, neighbours, k, walls.inSums);
             if (rho) {
               P.rhoReinit[i] = *rho;
             } else {
-              P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums);
+              P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, walls.inSums);
               ++fallbacks;
             }
           }

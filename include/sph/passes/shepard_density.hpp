@@ -26,6 +26,7 @@
 // stage, a pair leaving the support is then counted with W ~ 0).
 #pragma once
 
+#include "sph/boundaries/wall_sums.hpp"
 #include "sph/kernels/kernels.hpp"
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
@@ -70,7 +71,7 @@ template <int D>
 struct ShepardDensityPass {
   Kernel<D> kernel;
   long every = 20;             // steps between two re-initialisations
-  bool wallsInSums = true;     // repulsive walls: false
+  WallSums walls{};            // what the walls add (not repulsive walls)
   EquationOfState eos = LinearEos{1, 1};
   bool clampNegative = false;  // negative_pressure = clamp
 
@@ -86,7 +87,7 @@ unsigned ShepardDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& nei
       [&](const auto& k) {
         {
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-          for (std::size_t i = 0; i < n; ++i) P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, wallsInSums);
+          for (std::size_t i = 0; i < n; ++i) P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, walls.inSums);
         }
       },
       kernel);

@@ -8,6 +8,7 @@
 // densityAtZero()); the seed scheme's density kernel has that form itself.
 #pragma once
 
+#include "sph/boundaries/wall_sums.hpp"
 #include "sph/kernels/kernels.hpp"
 #include "sph/kernels/seed_kernels.hpp"
 #include "sph/neighbour_list.hpp"
@@ -39,7 +40,7 @@ template <int D>
 struct SummationDensityPass {
   DensityKernelChoice<D> kernel;
   EquationOfState eos;
-  bool wallsInSums = true;     // repulsive walls do not count
+  WallSums walls{};            // what the walls add (not repulsive walls)
   bool clampNegative = false;  // negative_pressure = clamp
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
@@ -48,7 +49,7 @@ struct SummationDensityPass {
 // Defined here, instantiated once (src/instantiate_*.cpp).
 template <int D>
 unsigned SummationDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-  std::visit([&](const auto& W, const auto& e) { computeSummationDensity(P, neighbours, W, e, wallsInSums, clampNegative); },
+  std::visit([&](const auto& W, const auto& e) { computeSummationDensity(P, neighbours, W, e, walls.inSums, clampNegative); },
              kernel, eos);
   return term_bits::kSummationDensity | term_bits::kEquationOfState;
 }

@@ -22,6 +22,7 @@
 // the same for every pair, not a second instantiation.
 #pragma once
 
+#include "sph/boundaries/wall_sums.hpp"
 #include "sph/kernels/kernels.hpp"
 #include "sph/pair_loop.hpp"
 #include "sph/passes/cspm_correction.hpp"
@@ -81,8 +82,7 @@ struct WcsphForcePass {
   Real xsphEpsilon = 0;
   bool continuity = false;            // density = continuity: write d rho/dt
   DensityDiffusion<D> diffusion;      // coefficient 0: off
-  bool wallPairs = true;              // walls enter the SPH sums (not for repulsive walls)
-  bool wallDensityRates = false;      // dynamic walls: d rho/dt of the wall particles
+  WallSums walls{};                   // the boundary's: wall pairs (inSums), wall d rho/dt (densityRates)
   bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
   bool cspm = false;                  // CSPM-corrected pressure gradient (needs cspmL)
   Real artificialPressure = 0;        // Monaghan 2000 epsilon (0: off)
@@ -103,7 +103,7 @@ template <int D>
 unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
   // The density rate is this loop's unless the integrator computes it apart.
   const bool rateHere = continuity && !ctx.densityRateApart;
-  const bool wallRatesHere = wallDensityRates && rateHere;
+  const bool wallRatesHere = walls.densityRates && rateHere;
   DensityDiffusion<D> diffusionHere = diffusion;
   if (!rateHere) diffusionHere.coefficient = 0;
   const unsigned bits = std::visit(
@@ -124,11 +124,11 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
                            std::make_tuple(ContinuityDensity{wallRatesHere}),
                            ForceEpilogue<D, writes>{bodies, xsphEpsilon, rateHere,
                                                     surfaceTension ? &*surfaceTension : nullptr},
-                           DensityRateEpilogue<D>{}, PairLoopParts{wallPairs, wallRatesHere}, correct);
+                           DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, wallRatesHere}, correct);
       },
       kernel, viscosity);
-  const unsigned walls = wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
-  return bits | walls | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
+  const unsigned wallBits = walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
+  return bits | wallBits | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
 }
 
 template <int D>
@@ -139,15 +139,15 @@ unsigned WcsphForcePass<D>::densityRate(Particles<D>& P, const NeighbourList<D>&
         auto loop = [&](const auto& correct) {
           const ContinuityDensity rate{true};
           return runPairLoop(P, neighbours, k, k.support(), std::make_tuple(rate, diffusion), std::make_tuple(rate),
-                             std::make_tuple(ContinuityDensity{wallDensityRates}), DensityRateEpilogue<D>{},
-                             DensityRateEpilogue<D>{}, PairLoopParts{wallPairs, wallDensityRates}, correct);
+                             std::make_tuple(ContinuityDensity{walls.densityRates}), DensityRateEpilogue<D>{},
+                             DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, walls.densityRates}, correct);
         };
         // The continuity sum takes the plain grad W, CSPM or not
         // (continuity_density.hpp): no correction to form here.
         return loop(NoGradientCorrection{});
       },
       kernel);
-  return bits | (wallDensityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u);
+  return bits | (walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u);
 }
 
 extern template struct WcsphForcePass<2>;
