@@ -67,7 +67,7 @@ Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>>
   spec.density = densityTreatment(c);
   spec.diffusion = densityDiffusion(c);
   spec.boundary = activeBoundary(c);
-  spec.noSlip = c.wallSlip == "no_slip";
+  spec.noSlip = noSlipWalls(c);
   spec.spacing = c.spacing;
   spec.clampNegative = clampNegativePressure(c);
   spec.reinit = methodRow(densityReinitMethods(), "density_reinit", c.densityReinit).make(c);

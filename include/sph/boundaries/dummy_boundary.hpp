@@ -12,6 +12,8 @@
 namespace sph {
 
 inline std::vector<std::string> wallSlipNames() { return {"no_slip", "free_slip"}; }
+// Whether the walls enter the viscous term (wall_slip = "no_slip").
+inline bool noSlipWalls(const CaseConfig& c) { return c.wallSlip == wallSlipNames().front(); }
 
 struct DummyBoundary : WallParticleBoundary {
   static constexpr const char* name = "dummy";
