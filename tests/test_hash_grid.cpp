@@ -196,4 +196,31 @@ BOOST_AUTO_TEST_CASE(resort_keeps_particle_data) {
   }
 }
 
+// The list's buffer grows to a quarter more than its fill plus one
+// particle's candidates, never to twice its size (std::vector::resize
+// doubles the capacity when it grows by less than the size). One thread:
+// one buffer.
+BOOST_AUTO_TEST_CASE(neighbour_list_capacity_is_a_quarter_over_the_fill) {
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(1);
+  for (std::size_t n : {3000u, 20000u}) {
+    Particles<2> P = particlesAt<2>(uniform<2>(n, 0, 1, 5));
+    const Real radius = 2.5 / std::sqrt(static_cast<Real>(n));
+    HashGrid<2> grid(radius);
+    grid.build(P.x);
+    P.permute(grid.order());
+    NeighbourList<2> list;
+    list.build(grid, P.x, radius);
+    const std::size_t rows = (n + 1) * sizeof(std::uint32_t) + 2 * sizeof(std::size_t);
+    const double buffer = static_cast<double>(list.bytesAllocated() - rows) / sizeof(std::uint32_t);
+    const double pairs = static_cast<double>(list.pairCount());
+    // Candidates of one particle: its 9 cells hold about 9 n radius^2 = 56.
+    BOOST_TEST_CONTEXT("n = " << n << ", pairs " << pairs << ", buffer " << buffer) {
+      BOOST_TEST(buffer >= pairs);
+      BOOST_TEST(buffer <= 1.25 * pairs + 200 + 64);
+    }
+  }
+  omp_set_num_threads(before);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
