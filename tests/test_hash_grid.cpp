@@ -196,4 +196,88 @@ BOOST_AUTO_TEST_CASE(resort_keeps_particle_data) {
   }
 }
 
+// The list's buffer grows to a quarter more than its fill plus one
+// particle's candidates, never to twice its size (std::vector::resize
+// doubles the capacity when it grows by less than the size). One thread:
+// one buffer.
+BOOST_AUTO_TEST_CASE(neighbour_list_capacity_is_a_quarter_over_the_fill) {
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(1);
+  for (std::size_t n : {3000u, 20000u}) {
+    Particles<2> P = particlesAt<2>(uniform<2>(n, 0, 1, 5));
+    const Real radius = 2.5 / std::sqrt(static_cast<Real>(n));
+    HashGrid<2> grid(radius);
+    grid.build(P.x);
+    P.permute(grid.order());
+    NeighbourList<2> list;
+    list.build(grid, P.x, radius);
+    const std::size_t rows = (n + 1) * sizeof(std::uint32_t) + 2 * sizeof(std::size_t);
+    const double buffer = static_cast<double>(list.bytesAllocated() - rows) / sizeof(std::uint32_t);
+    const double pairs = static_cast<double>(list.pairCount());
+    // Candidates of one particle: its 9 cells hold about 9 n radius^2 = 56.
+    BOOST_TEST_CONTEXT("n = " << n << ", pairs " << pairs << ", buffer " << buffer) {
+      BOOST_TEST(buffer >= pairs);
+      BOOST_TEST(buffer <= 1.25 * pairs + 200 + 64);
+    }
+  }
+  omp_set_num_threads(before);
+}
+
+// Several fields of each type go through one scratch array per type (the
+// gather's swap hands a field's old buffer on to the next field of its
+// type): after two re-sorts, with and without carrying the rates, every
+// field still belongs to its particle; the list's positions (xList) stay.
+BOOST_AUTO_TEST_CASE(resort_through_shared_scratch_keeps_every_field) {
+  const std::size_t n = 400, fluid = 300;
+  Particles<2> P;
+  P.x = uniform<2>(n, 0, 1, 11);
+  for (std::size_t i = 0; i < n; ++i) P.id.push_back(static_cast<std::int64_t>(i));
+  P.resize(n, fluid);
+  P.allocate(fieldBit(kFieldDrho) | fieldBit(kFieldVHalf) | fieldBit(kFieldXList));
+  const auto value = [](std::size_t i, int field) { return static_cast<Real>(i) + 0.001 * field; };
+  for (std::size_t i = 0; i < n; ++i) {
+    P.v[i] = Vec<2>(value(i, 1), -value(i, 1));
+    P.vHalf[i] = Vec<2>(value(i, 2), value(i, 2));
+    P.a[i] = Vec<2>(value(i, 3), 0);
+    P.rho[i] = value(i, 4);
+    P.drho[i] = value(i, 5);
+    P.m[i] = value(i, 6);
+    P.p[i] = value(i, 7);
+    P.xList[i] = Vec<2>(value(i, 8), 0);
+  }
+  const std::vector<Vec<2>> x0 = P.x;
+  for (const bool carryAll : {false, true}) {
+    HashGrid<2> grid(0.05 + (carryAll ? 0.02 : 0.0));
+    grid.build(P.x, fluid);
+    const std::vector<Vec<2>> xListBefore = P.xList;
+    const std::vector<Vec<2>> aBefore = P.a;
+    P.permute(grid.order(), carryAll);
+    BOOST_TEST_CONTEXT("carryAll = " << carryAll) {
+      BOOST_TEST((P.xList == xListBefore));
+      if (!carryAll) BOOST_TEST((P.a == aBefore));  // a rate: not permuted
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto i = static_cast<std::size_t>(P.id[k]);
+        BOOST_TEST((P.x[k] == x0[i]));
+        BOOST_TEST(P.kind[k] == (i < fluid ? kFluid : kWall));
+        BOOST_TEST(P.v[k][0] == value(i, 1));
+        BOOST_TEST(P.vHalf[k][1] == value(i, 2));
+        BOOST_TEST(P.rho[k] == value(i, 4));
+        BOOST_TEST(P.drho[k] == value(i, 5));
+        BOOST_TEST(P.m[k] == value(i, 6));
+        if (carryAll) {
+          BOOST_TEST(P.a[k][0] == value(i, 3));
+          BOOST_TEST(P.p[k] == value(i, 7));
+        }
+      }
+    }
+    // Put the rates back in the particles' order for the carried pass.
+    if (!carryAll)
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto i = static_cast<std::size_t>(P.id[k]);
+        P.a[k] = Vec<2>(value(i, 3), 0);
+        P.p[k] = value(i, 7);
+      }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

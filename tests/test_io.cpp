@@ -3,9 +3,11 @@
 #include "pvd_reader.hpp"
 #include "test_support.hpp"
 
+#include "sph/io/snapshot_polydata.hpp"
 #include "sph/io/vtp_io.hpp"
 #include "sph/particle_sources.hpp"
 
+#include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>
 #include <vtkFieldData.h>
@@ -48,9 +50,74 @@ void expectSame(const VtpParticles& a, const VtpParticles& b, const std::string&
   }
 }
 
+// Particles with every value distinct (fluid and walls, a field of each
+// type the writer handles: vectors, scalars, id, kind, and xList).
+template <int D>
+Particles<D> distinctParticles(std::size_t n, std::size_t fluid) {
+  Particles<D> P;
+  P.x.resize(n);
+  P.resize(n, fluid);
+  P.allocate(fieldBit(kFieldDrho) | fieldBit(kFieldXList));
+  for (std::size_t i = 0; i < n; ++i) {
+    const Real s = static_cast<Real>(i) + 0.25;
+    for (int d = 0; d < D; ++d) {
+      P.x[i][d] = s + 0.1 * d;
+      P.v[i][d] = -s - 0.2 * d;
+      P.a[i][d] = 3 * s + d;
+      P.xList[i][d] = s * s + d;
+    }
+    P.rho[i] = 1000 + s;
+    P.drho[i] = -s;
+    P.p[i] = 7 * s;
+    P.m[i] = 0.5 + s;
+    P.id[i] = static_cast<std::int64_t>(n - i);
+  }
+  return P;
+}
+
+// The polydata with arrays borrowed from the particles (the .vtp writer's)
+// holds exactly what the one with copies (Catalyst's) holds: the same
+// arrays, names, types, components and values, the same points and
+// vertices. A mistake in the borrowing (count, components, type) shows here.
+template <int D>
+void expectBorrowedEqualsCopied() {
+  const Particles<D> P = distinctParticles<D>(37, 30);
+  const SnapshotInfo info{0.5, 3, 0.01, 0.0075, {0, 0}, {1, 1}};
+  const vtkSmartPointer<vtkPolyData> copied = snapshotPolyData<D>(P, info, false);
+  const vtkSmartPointer<vtkPolyData> borrowed = snapshotPolyData<D>(P, info, true);
+  const auto sameArray = [](vtkDataArray* a, vtkDataArray* b, const std::string& name) {
+    BOOST_TEST_CONTEXT(name) {
+      BOOST_TEST_REQUIRE(a != nullptr);
+      BOOST_TEST_REQUIRE(b != nullptr);
+      BOOST_TEST(a->GetDataType() == b->GetDataType());
+      BOOST_TEST(a->GetNumberOfComponents() == b->GetNumberOfComponents());
+      BOOST_TEST_REQUIRE(a->GetNumberOfTuples() == b->GetNumberOfTuples());
+      for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+        for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+          BOOST_TEST(a->GetComponent(i, c) == b->GetComponent(i, c));
+    }
+  };
+  BOOST_TEST_REQUIRE(copied->GetNumberOfPoints() == 37);
+  sameArray(copied->GetPoints()->GetData(), borrowed->GetPoints()->GetData(), "Points");
+  sameArray(copied->GetVerts()->GetOffsetsArray(), borrowed->GetVerts()->GetOffsetsArray(), "offsets");
+  sameArray(copied->GetVerts()->GetConnectivityArray(), borrowed->GetVerts()->GetConnectivityArray(), "connectivity");
+  vtkPointData* a = copied->GetPointData();
+  vtkPointData* b = borrowed->GetPointData();
+  BOOST_TEST_REQUIRE(a->GetNumberOfArrays() == b->GetNumberOfArrays());
+  BOOST_TEST(a->GetNumberOfArrays() == 9);  // velocity ... kind, list_build_position
+  for (int k = 0; k < a->GetNumberOfArrays(); ++k) {
+    const std::string name = a->GetArrayName(k);
+    BOOST_TEST(name == b->GetArrayName(k));
+    sameArray(a->GetArray(k), b->GetArray(name.c_str()), name);
+  }
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(io)
+
+BOOST_AUTO_TEST_CASE(borrowed_snapshot_arrays_equal_copies_2d) { expectBorrowedEqualsCopied<2>(); }
+BOOST_AUTO_TEST_CASE(borrowed_snapshot_arrays_equal_copies_3d) { expectBorrowedEqualsCopied<3>(); }
 
 BOOST_AUTO_TEST_CASE(vtp_round_trip_keeps_count_arrays_and_values) {
   const auto dir = test::scratchDir("vtp");

@@ -85,7 +85,7 @@ class NeighbourList {
                           const std::uint32_t* end, int ranges) {
     for (int s = 0; s < ranges; ++s) {
       const std::uint32_t b = begin[s], e = end[s];
-      if (used + (e - b) > list.size()) list.resize(used + (e - b) + used / 4 + 64);
+      if (used + (e - b) > list.size()) grow(list, used + (e - b) + used / 4 + 64);
       std::uint32_t* out = list.data();
       for (std::uint32_t j = b; j < e; ++j) {
         out[used] = j;
@@ -93,6 +93,14 @@ class NeighbourList {
       }
     }
     return used;
+  }
+
+  // Resize to n with capacity n: a quarter more than the fill is the growth
+  // (resize alone would double the capacity, and the buffer is the largest
+  // array of a run).
+  static void grow(std::vector<std::uint32_t>& list, std::size_t n) {
+    list.reserve(n);
+    list.resize(n);
   }
 
   // Call f(j) for every neighbour j of particle i (fluid ones first).
