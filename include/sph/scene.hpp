@@ -91,11 +91,14 @@ class Scene {
     // The state the integrator carries between steps (two-step leap-frog's
     // previous velocity and density) that the particles came without: a
     // resumed run cannot continue without it (resume()).
+    // Likewise the positions of the last list build (a snapshot's
+    // list_build_position): without them resume() builds a new list.
     const std::size_t n = P_.size();
     P_.forEachField([&](const FieldInfo& info, const auto& field) {
       if (((integratorNeeds >> info.id) & 1u) && info.role == FieldRole::kState && field.size() != n)
         carriedMissing_ |= fieldBit(info.id);
     });
+    listRecorded_ = n > 0 && P_.xList.size() == n;
     P_.allocate(model_.needs() | integratorNeeds | (skin_ > 0 ? fieldBit(kFieldXList) : FieldSet(0)));
     if (auto* leapFrog = std::get_if<LeapFrog<D>>(&integrator_))
       leapFrog->forcesSeeHalfStepVelocity = model_.forcesSeeHalfStepVelocity();
@@ -263,6 +266,7 @@ class Scene {
   std::optional<SinusoidalWallMotion<D>> wallMotion_;
   long guardActions_ = 0;
   FieldSet carriedMissing_ = 0;  // integrator state the particles came without
+  bool listRecorded_ = false;     // the particles came with their list_build_position
   HashGrid<D> grid_;
   NeighbourList<D> neighbours_;
   Real skin_;        // Verlet skin, a fraction of the support
@@ -385,9 +389,7 @@ template <int D>
 void Scene<D>::rebuildRecordedList() {
   const std::size_t n = P_.size();
   const auto owned = static_cast<std::ptrdiff_t>(n);
-  const bool recorded = std::any_of(P_.xList.begin(), P_.xList.begin() + owned,
-                                    [](const Vec<D>& x) { return x != Vec<D>::Zero(); });
-  if (!recorded) {
+  if (!listRecorded_) {
     sort();
     return;
   }
