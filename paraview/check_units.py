@@ -24,11 +24,13 @@ EXPECTED = {
     3: {"velocity": "m/s", "acceleration": "m/s^2", "density": "kg/m^3",
         "density_rate": "kg/m^3/s", "pressure": "Pa", "mass": "kg",
         "id": "1", "kind": "1", "xsph_velocity": "m/s", "colour": "1",
-        "colour_normal": "1/m", "curvature": "1/m", "list_build_position": "m"},
+        "colour_normal": "1/m", "curvature": "1/m", "list_build_position": "m",
+        "velocity_previous": "m/s", "density_previous": "kg/m^3"},
     2: {"velocity": "m/s", "acceleration": "m/s^2", "density": "kg/m^2",
         "density_rate": "kg/m^2/s", "pressure": "N/m", "mass": "kg",
         "id": "1", "kind": "1", "xsph_velocity": "m/s", "colour": "1",
-        "colour_normal": "1/m", "curvature": "1/m", "list_build_position": "m"},
+        "colour_normal": "1/m", "curvature": "1/m", "list_build_position": "m",
+        "velocity_previous": "m/s", "density_previous": "kg/m^2"},
 }
 
 

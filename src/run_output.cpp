@@ -129,15 +129,11 @@ void RunOutput<D>::flushTimeSteps() {
 }
 
 template <int D>
-void RunOutput<D>::writeLog(const std::string& file, const std::string& text) {
+void RunOutput<D>::writeLog(const std::string& file, std::string& text) {
   const std::string path = (dir_ / file).string();
-  const auto known = onDisk_.find(file);
-  if (known == onDisk_.end() || known->second > text.size()) {
-    writeFileAtomically(path, text);
-  } else if (known->second < text.size()) {
-    appendToFile(path, text.substr(known->second));
-  }
-  onDisk_[file] = text.size();
+  if (onDisk_.insert(file).second) writeFileAtomically(path, text);
+  else if (!text.empty()) appendToFile(path, text);
+  text.clear();
   record_.addFile(file);
 }
 

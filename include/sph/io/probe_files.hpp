@@ -129,12 +129,13 @@ class ProbeFiles {
     if (front_) frontText_ += timeText + "," + number(frontPosition(P, dx_)) + "\n";
   }
 
-  // The files' contents, and their names ("" for a file the case has none of).
+  // The files' rows not yet written (the writer empties them), and their
+  // names; only the files the case has.
   struct File {
     const char* name;
-    const std::string* text;
+    std::string* text;
   };
-  std::vector<File> files() const {
+  std::vector<File> files() {
     std::vector<File> f;
     if (!points_.empty()) f.push_back({"probes.csv", &pointText_});
     if (!heights_.empty()) f.push_back({"heights.csv", &heightText_});

@@ -12,7 +12,7 @@
 
 #include <filesystem>
 #include <iosfwd>
-#include <map>
+#include <set>
 #include <string>
 
 namespace sph {
@@ -56,14 +56,16 @@ class RunOutput {
   RunRecord& record_;
   bool adaptive_;
   ProbeFiles<D> probes_;
+  // The rows of each growing log not yet on disk.
   std::string energy_, dtLog_;
-  // Bytes of each growing log (energy.csv, timestep.csv, probe files) on disk.
-  std::map<std::string, std::size_t> onDisk_;
+  // The logs (energy.csv, timestep.csv, probe files) this object has written.
+  std::set<std::string> onDisk_;
 
-  // A log's whole text: written atomically the first time (a new run's
-  // header, or a resumed run's rows up to its snapshot), then only the rows
-  // added since appended, so a long run does not rewrite it at every snapshot.
-  void writeLog(const std::string& file, const std::string& text);
+  // The first time: the log written atomically from `text` (a new run's
+  // header, or a resumed run's rows up to its snapshot); afterwards `text`
+  // (the rows added since) appended. `text` is emptied, so a run holds only
+  // the rows since its last snapshot, not the whole log.
+  void writeLog(const std::string& file, std::string& text);
   long count_ = 0;
   long lastStep_ = -1;
   Real lastTime_ = 0;
