@@ -22,6 +22,7 @@ std::vector<std::string> modelNames() { return methodNames(modelMethods()); }
 std::vector<std::string> boundaryNames() { return methodNames(boundaryMethods()); }
 std::vector<std::string> densityNames() { return methodNames(densityMethods()); }
 std::vector<std::string> negativePressureNames() { return methodNames(negativePressureMethods()); }
+std::vector<std::string> neighbourWalkNames() { return methodNames(neighbourWalkMethods()); }
 std::vector<std::string> densityReinitNames() { return methodNames(densityReinitMethods()); }
 std::vector<std::string> gradientCorrectionNames() { return methodNames(gradientCorrectionMethods()); }
 std::vector<std::string> surfaceTensionNames() { return methodNames(surfaceTensionMethods()); }
@@ -211,6 +212,11 @@ const std::vector<KeySpec>& caseKeys() {
        "support (1 + skin) and is rebuilt (with the sort by cell) only when a particle has moved more than half "
        "the skin since the last build; 0: rebuilt at every evaluation",
        within(0, 1), "0.1 for model wcsph, 0 for seed_wcsph", nullptr},
+      {"neighbour_walk", G::kNumerics, &C::neighbourWalk, "",
+       "How the passes visit each particle's neighbours: list (the pairs stored at each build, read back by every "
+       "pass) or cells (no stored list: the grid's cells scanned again at every visit, about 150 bytes per "
+       "particle less in 2D, slower); the same pairs in the same order, so the same results",
+       {}, nullptr, neighbourWalkNames},
       {"regime_check", G::kNumerics, &C::regimeCheck, "",
        "Every 10 steps and before every snapshot: Mach number above 1, a Tait fluid 10% above rho0, the fluid "
        "breaking up (over half its particles alone), particles collapsing (4x the neighbours), pairing (a "

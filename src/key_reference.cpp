@@ -87,6 +87,7 @@ std::string keyReferenceMarkdown() {
   text += methodTable("density", densityMethods());
   text += methodTable("diffusion", diffusionMethods());
   text += methodTable("negative_pressure", negativePressureMethods());
+  text += methodTable("neighbour_walk", neighbourWalkMethods());
   text += methodTable("density_reinit", densityReinitMethods());
   text += methodTable("gradient_correction", gradientCorrectionMethods());
   text += methodTable("surface_tension", surfaceTensionMethods());

@@ -118,6 +118,7 @@ struct CaseConfig {
   // neighbour list (sph/scene.hpp): Verlet skin as a fraction of the support;
   // withDefaults() sets kDefaultNeighbourSkin for model wcsph, 0 for the seed
   Real neighbourSkin = 0;
+  std::string neighbourWalk = "list";  // list | cells
 
   // regime check (sph/regime_check.hpp): stop | warn | off
   std::string regimeCheck = "stop";

@@ -361,6 +361,21 @@ inline const std::vector<Method<bool>>& negativePressureMethods() {
   return m;
 }
 
+// How the passes visit each particle's neighbours (neighbour_walk key;
+// neighbour_list.hpp): from a list stored at each build, or by scanning the
+// grid's cells again at every visit. The same pairs in the same order, so
+// the same results; builds whether the cells are walked.
+inline const std::vector<Method<bool>>& neighbourWalkMethods() {
+  static const std::vector<Method<bool>> m = {
+      {"list", "the pairs stored at each build of the neighbour list and read back by every pass (the faster)",
+       {}, [](const CaseConfig&) { return false; }},
+      {"cells", "no stored list: every pass scans the 3^D cells around each particle again, as DualSPHysics "
+                "does (about 150 bytes per particle less in 2D, more time per walk)",
+       {}, [](const CaseConfig&) { return true; }},
+  };
+  return m;
+}
+
 // Colour-field surface tension (terms/colour_surface_tension.hpp): the
 // curvature method, none for no surface tension.
 inline void requireComposedForTension(const CaseConfig& c) {
@@ -512,6 +527,7 @@ void forEachSharedFamily(const CaseConfig& c, F&& f) {
   f(shiftingMethods(), "shifting", c.shifting);
   f(initialFlowMethods(), "initial_flow", c.initialFlow);
   f(negativePressureMethods(), "negative_pressure", c.negativePressure);
+  f(neighbourWalkMethods(), "neighbour_walk", c.neighbourWalk);
 }
 
 // The combination rules of the methods a case chooses.
@@ -588,6 +604,11 @@ inline bool continuityDensity(const CaseConfig& c) { return densityTreatment(c) 
 // The density diffusion of a continuity case (diffusion and delta keys).
 inline DensityDiffusionChoice densityDiffusion(const CaseConfig& c) {
   return methodRow(diffusionMethods(), "diffusion", c.diffusion).make(c);
+}
+
+// Whether the passes walk the grid's cells instead of a stored list (neighbour_walk key).
+inline bool walkCells(const CaseConfig& c) {
+  return methodRow(neighbourWalkMethods(), "neighbour_walk", c.neighbourWalk).make(c);
 }
 
 // Whether negative pressures are clamped (negative_pressure key).

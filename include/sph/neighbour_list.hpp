@@ -19,6 +19,16 @@
 // appear in the owned particles' rows like any neighbour, ghosts of fluid
 // among the fluid neighbours and ghosts of walls among the wall ones, so
 // every pass forms the plain r_ij = x_i - x_j.
+//
+// Cell walk (neighbour_walk = cells): no list is stored; each visit of a
+// particle's neighbours scans the grid's stencil around it again, as
+// DualSPHysics' cell-linked list does, into a small per-thread buffer
+// that the visit then walks. The scan is the build's own (scan(), the same
+// stencil of the particle's cell at the positions of the last build, the
+// same distance test there), so it yields the list's pairs in the list's
+// order and every result is bit for bit the stored list's; it trades the
+// list's memory (about 150 bytes per particle in 2D) for a scan of the
+// 3^D cells at every walk.
 #pragma once
 
 #include "sph/hash_grid.hpp"
@@ -34,11 +44,20 @@ template <int D>
 class NeighbourList {
  public:
   // Rows for the owned particles [0, ownedCount): fluid below fluidCount.
+  // (Cell walk: nothing is stored; `x` must stay, unchanged, the positions
+  // of this build until the next one: the scene passes its list_build_position.)
   void build(const HashGrid<D>& grid, const std::vector<Vec<D>>& x, Real radius,
              std::size_t fluidCount = SIZE_MAX, std::size_t ownedCount = SIZE_MAX) {
     const std::size_t n = std::min(ownedCount, x.size());
     fluidCount = std::min(fluidCount, n);
     const bool walls = fluidCount < n;
+    if (cellWalk_) {
+      cells_ = {&grid, &x, radius * radius, fluidCount, n, walls};
+      const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+      if (slots_.size() < threads) slots_.resize(threads);
+      for (Slot& s : slots_) s.stencil.valid = false;  // the grid changed
+      return;
+    }
     if (walls) wallBegin_.resize(n);
     else std::vector<std::uint32_t>().swap(wallBegin_);
     const Real radius2 = radius * radius;
@@ -115,13 +134,29 @@ class NeighbourList {
   template <class F, class G>
   void forEachByKind(std::size_t i, F&& f, G&& g) const {
     const Run r = run(i);
-    const std::uint32_t split = wallBegin_.empty() ? r.end : wallBegin_[i];
-    for (std::uint32_t k = r.begin; k < split; ++k) f(r.list[k]);
-    for (std::uint32_t k = split; k < r.end; ++k) g(r.list[k]);
+    for (std::uint32_t k = r.begin; k < r.split; ++k) f(r.list[k]);
+    for (std::uint32_t k = r.split; k < r.end; ++k) g(r.list[k]);
   }
+
+  // Store the list (false, the default) or walk the cells at every visit
+  // (true); takes effect at the next build.
+  void setCellWalk(bool on) {
+    cellWalk_ = on;
+    if (!on) return;
+    decltype(chunks_)().swap(chunks_);
+    decltype(begin_)().swap(begin_);
+    decltype(wallBegin_)().swap(wallBegin_);
+    used_.clear();
+    usedChunks_ = 0;
+  }
+  bool cellWalk() const { return cellWalk_; }
 
   std::size_t pairCount() const {
     std::size_t total = 0;
+    if (cellWalk_) {
+      for (std::size_t i = 0; i < cells_.n; ++i) total += run(i).end;
+      return total;
+    }
     for (std::size_t t = 0; t < usedChunks_; ++t) total += used_[t];
     return total;
   }
@@ -130,22 +165,56 @@ class NeighbourList {
     std::size_t b = (begin_.capacity() + wallBegin_.capacity()) * sizeof(std::uint32_t) +
                     chunkStart_.capacity() * sizeof(std::size_t);
     for (const auto& c : chunks_) b += c.capacity() * sizeof(std::uint32_t);
+    for (const Slot& s : slots_) b += sizeof(Slot) + s.list.capacity() * sizeof(std::uint32_t);
     return b;
   }
 
  private:
   struct Run {
     const std::uint32_t* list;
-    std::uint32_t begin, end;
+    std::uint32_t begin, split, end;  // fluid neighbours [begin, split), walls [split, end)
   };
   [[gnu::always_inline]] Run run(std::size_t i) const {
+    if (cellWalk_) return scanCells(i);
     std::size_t t = 0;
     while (i >= chunkStart_[t + 1]) ++t;
     const std::vector<std::uint32_t>& list = chunks_[t];
     const std::uint32_t end =
         i + 1 < chunkStart_[t + 1] ? begin_[i + 1] : static_cast<std::uint32_t>(used_[t]);
-    return {list.data(), begin_[i], end};
+    return {list.data(), begin_[i], wallBegin_.empty() ? end : wallBegin_[i], end};
   }
+
+  // The cell walk's row of particle i, scanned into the calling thread's
+  // buffer exactly as build() would have listed it.
+  [[gnu::noinline]] Run scanCells(std::size_t i) const {
+    Slot& s = slots_[static_cast<std::size_t>(omp_get_thread_num())];
+    const std::vector<Vec<D>>& x = *cells_.x;
+    const Vec<D> xi = x[i];
+    cells_.grid->updateStencil(xi, s.stencil);
+    std::size_t used = scan(s.list, 0, i, xi, x, cells_.radius2, s.stencil.begin, s.stencil.end, s.stencil.count);
+    const auto split = static_cast<std::uint32_t>(used);
+    if (cells_.walls && i < cells_.fluidCount)
+      used = scan(s.list, used, i, xi, x, cells_.radius2, s.stencil.wallBegin, s.stencil.wallEnd,
+                  s.stencil.wallCount);
+    return {s.list.data(), 0, split, static_cast<std::uint32_t>(used)};
+  }
+
+  // The cell walk's state: what build() was given, and per thread a
+  // stencil (recomputed only when the cell changes) and a row buffer.
+  struct CellWalk {
+    const HashGrid<D>* grid = nullptr;
+    const std::vector<Vec<D>>* x = nullptr;
+    Real radius2 = 0;
+    std::size_t fluidCount = 0, n = 0;
+    bool walls = false;
+  };
+  struct alignas(64) Slot {
+    typename HashGrid<D>::Stencil stencil;
+    std::vector<std::uint32_t> list;
+  };
+  bool cellWalk_ = false;
+  CellWalk cells_;
+  mutable std::vector<Slot> slots_;
 
   std::vector<std::vector<std::uint32_t>> chunks_;  // one flat buffer per thread
   std::vector<std::size_t> used_;                   // entries in use per chunk

@@ -138,13 +138,20 @@ class PeriodicGhosts {
 // every scene and test goes through. carryAll (a list with a skin): every
 // field follows its particle, rates and derived fields too
 // (Particles::permute()), and the ghosts are made in the order of ids.
+// A cell walk (neighbour_list.hpp) keeps the positions of the build, the
+// ghosts' included, in xList (allocated by the scene).
 template <int D>
 void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours, Real radius,
                 PeriodicGhosts<D>* ghosts = nullptr, bool carryAll = false) {
   if (ghosts) ghosts->make(P, carryAll);
   grid.build(P.x, P.fluidCount(), P.size(), P.ghostFluidEnd());
   P.permute(grid.order(), carryAll);
-  neighbours.build(grid, P.x, radius, P.fluidCount(), P.size());
+  if (!neighbours.cellWalk()) {
+    neighbours.build(grid, P.x, radius, P.fluidCount(), P.size());
+    return;
+  }
+  std::copy(P.x.begin(), P.x.end(), P.xList.begin());
+  neighbours.build(grid, P.xList, radius, P.fluidCount(), P.size());
 }
 
 }  // namespace sph

@@ -118,6 +118,14 @@ class Scene {
   }
   // The neighbour list's Verlet skin, a fraction of the support (see the top).
   Real neighbourSkin() const { return skin_; }
+  // Walk the grid's cells at every visit instead of storing the list
+  // (neighbour_walk = cells; neighbour_list.hpp): the same pairs in the same
+  // order, so the same results, without the list's memory. It keeps the
+  // positions of each build in xList. Call before initialise() or resume().
+  void setCellWalk(bool on) {
+    neighbours_.setCellWalk(on);
+    if (on) P_.allocate(P_.allocated() | fieldBit(kFieldXList));
+  }
   // Make the neighbour list fit the particles' current positions: with no
   // skin, sort and build it; with one, keep it if it still holds (the
   // ghosts refreshed), else rebuild. (Each evaluation calls it.)
