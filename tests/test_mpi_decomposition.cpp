@@ -20,6 +20,7 @@
 #include "sph/periodic_ghosts.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <memory>
 #include <random>
 #include <set>
@@ -356,6 +357,15 @@ Global<3> global3d() { return makeGlobal<3>(0.15, 800, 150, 0.02); }
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(mpi_decomposition)
+
+// A program a rank starts (sph study's runs) inherits the launcher's
+// variables but is no rank: sph started so runs alone (mpi/session.hpp)
+// instead of failing in MPI_Init. `timeout`: a failing MPI_Init can hang.
+BOOST_AUTO_TEST_CASE(child_process_runs_alone) {
+  if (world().rank != 0) return;
+  const int status = std::system("timeout 30 \"" SPH_EXECUTABLE "\" --version > /dev/null 2>&1");
+  BOOST_CHECK_EQUAL(status, 0);
+}
 
 BOOST_AUTO_TEST_CASE(migration_2d) { checkMigration(global2d()); }
 BOOST_AUTO_TEST_CASE(migration_3d) { checkMigration(global3d()); }

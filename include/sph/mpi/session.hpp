@@ -12,7 +12,10 @@
 // does not: the process is rank 0 of 1, no MPI call is made, and `sph`
 // behaves exactly as a build without MPI (OpenMPI's singleton start would
 // otherwise fork a helper daemon at every run). Code that communicates asks
-// size() first; with one rank there is nothing to send.
+// size() first; with one rank there is nothing to send. A process that
+// initialised MPI sets SPH_MPI_PARENT in its environment: the programs it
+// starts (sph study's runs) inherit the launcher's variables but are not
+// ranks, and would fail in MPI_Init; with it they run alone.
 #pragma once
 
 #include <mpi.h>
@@ -31,8 +34,10 @@ struct Communicator {
   int size = 1;
 };
 
-// Whether a launcher started this process (OpenMPI, PMIx, Hydra/PMI, Slurm).
+// Whether a launcher started this process (OpenMPI, PMIx, Hydra/PMI,
+// Slurm), not a rank that did (SPH_MPI_PARENT).
 inline bool launchedByMpi() {
+  if (std::getenv("SPH_MPI_PARENT")) return false;
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
     if (std::getenv(name)) return true;
   return false;
@@ -55,6 +60,7 @@ class Session {
       initialised_ = false;
       throw std::runtime_error("the MPI library does not support MPI_THREAD_FUNNELED (threads with MPI)");
     }
+    setenv("SPH_MPI_PARENT", "1", 1);  // POSIX
     MPI_Comm_dup(MPI_COMM_WORLD, &comm_);
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &size_);
