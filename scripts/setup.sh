@@ -3,7 +3,8 @@
 # Idempotent: when everything is present it only asks dpkg and returns.
 set -euo pipefail
 packages=(g++ cmake make git libeigen3-dev libcli11-dev libboost-test-dev nlohmann-json3-dev
-          paraview-dev libpython3-dev python3-paraview paraview xvfb xauth imagemagick)
+          paraview-dev libpython3-dev python3-paraview paraview xvfb xauth imagemagick
+          libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -98,6 +98,9 @@ class HashGrid {
   }
 
   const std::vector<std::uint32_t>& order() const { return order_; }
+  // Whether the last build() had walls, owned or ghosts (a rank of a
+  // decomposition may hold halos of walls and no walls of its own).
+  bool hasWalls() const { return wallOffset_ != 0 || ghostWallOffset_ != 0; }
 
   // The particle ranges of the (distinct) buckets around one cell. Particles
   // of the same cell share it, so loops over sorted particles compute it once

@@ -9,10 +9,11 @@
 // Each particle's neighbours keep the order of the grid scan, so results do
 // not depend on the number of threads.
 //
-// With walls (particles from fluidCount on), a fluid particle lists its fluid
-// neighbours, then its wall neighbours (forEachFluid / forEachWall visit each
-// run); a wall particle lists only its fluid neighbours: no method here
-// couples two wall particles.
+// With walls (particles from fluidCount on, or only ghosts of walls: a rank
+// of a decomposition may hold halos of walls and no walls of its own), a
+// fluid particle lists its fluid neighbours, then its wall neighbours
+// (forEachFluid / forEachWall visit each run); a wall particle lists only
+// its fluid neighbours: no method here couples two wall particles.
 //
 // Ghosts (periodic_ghosts.hpp): particles from `ownedCount` on are ghosts;
 // they get no row of their own (no pass computes anything for them) but
@@ -50,7 +51,7 @@ class NeighbourList {
              std::size_t fluidCount = SIZE_MAX, std::size_t ownedCount = SIZE_MAX) {
     const std::size_t n = std::min(ownedCount, x.size());
     fluidCount = std::min(fluidCount, n);
-    const bool walls = fluidCount < n;
+    const bool walls = fluidCount < n || grid.hasWalls();
     if (cellWalk_) {
       cells_ = {&grid, &x, radius * radius, fluidCount, n, walls};
       const auto threads = static_cast<std::size_t>(omp_get_max_threads());

@@ -16,7 +16,12 @@
 // integrators, the checks, the energies and the output never see a ghost.
 // A ghost is the output of no pass: refreshGhosts() copies its fields from
 // its source (ghostSource) and puts it at the source's position plus its
-// shift.
+// shift. A ghost whose source has the bit kRemoteSource set is a halo
+// particle, a copy of a particle owned by another MPI rank
+// (mpi/domain_decomposition.hpp): the rest of its source is its slot in the
+// decomposition's receive buffer, which fills its fields; refreshGhosts()
+// and permute() leave its fields and its record alone (the record moves with
+// the particle).
 //
 // permute() reorders the state and stage fields in one parallel pass,
 // through one scratch array per value type (vectors, scalars, ids, kinds,
@@ -157,6 +162,9 @@ struct Particles : FieldArrays<D> {
   // Ghosts of fluid particles are [size(), ghostFluidEnd()), of walls the rest.
   std::size_t ghostFluidEnd() const { return size() + ghostFluid_; }
   const std::vector<std::uint32_t>& ghostSource() const { return ghostSource_; }
+  const std::vector<Vec<D>>& ghostShift() const { return ghostShift_; }
+  // A ghost source with this bit is a halo particle's receive slot.
+  static constexpr std::uint32_t kRemoteSource = 0x80000000u;
   FieldSet allocated() const { return allocated_; }
   bool has(FieldId f) const { return (allocated_ >> f) & 1u; }
 
@@ -201,6 +209,19 @@ struct Particles : FieldArrays<D> {
       for (std::size_t i = 0; i < n; ++i) kind[i] = i < fluid_ ? kFluid : kWall;
     allocated_ = wanted;
     setPermuted();
+  }
+
+  // Drop the ghosts and make the owned particles n, with walls from
+  // `fluidCount` on: every allocated field keeps its first n entries (new
+  // ones zero) and its capacity. The caller fills the fields (migration
+  // between MPI ranks, mpi/domain_decomposition.hpp).
+  void resizeOwned(std::size_t n, std::size_t fluidCount) {
+    clearGhosts();
+    this->forEachField([&](const FieldInfo& info, auto& field) {
+      using Field = std::decay_t<decltype(field)>;
+      if ((allocated_ >> info.id) & 1u) field.resize(n, FieldArrays<D>::template zero<typename Field::value_type>());
+    });
+    fluid_ = std::min(fluidCount, n);
   }
 
   // Drop the ghosts (the arrays keep their capacity).
@@ -248,11 +269,13 @@ struct Particles : FieldArrays<D> {
     this->forEachField([&](const FieldInfo& info, auto& field) {
       if (((fields >> info.id) & 1u) == 0 || info.id == kFieldX) return;
 #pragma omp for schedule(static) nowait
-      for (std::size_t g = 0; g < ng; ++g) field[owned + g] = field[src[g]];
+      for (std::size_t g = 0; g < ng; ++g)
+        if ((src[g] & kRemoteSource) == 0) field[owned + g] = field[src[g]];
     });
     if (fields & fieldBit(kFieldX)) {
 #pragma omp for schedule(static) nowait
-      for (std::size_t g = 0; g < ng; ++g) x[owned + g] = x[src[g]] + ghostShift_[g];
+      for (std::size_t g = 0; g < ng; ++g)
+        if ((src[g] & kRemoteSource) == 0) x[owned + g] = x[src[g]] + ghostShift_[g];
     }
 #pragma omp barrier
   }
@@ -280,7 +303,8 @@ struct Particles : FieldArrays<D> {
     shiftShadow_.resize(ng);
     for (std::size_t g = 0; g < ng; ++g) {
       const std::size_t old = order[owned + g] - owned;
-      sourceShadow_[g] = newIndex_[ghostSource_[old]];
+      const std::uint32_t source = ghostSource_[old];
+      sourceShadow_[g] = (source & kRemoteSource) ? source : newIndex_[source];
       shiftShadow_[g] = ghostShift_[old];
     }
     ghostSource_.swap(sourceShadow_);
