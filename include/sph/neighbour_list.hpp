@@ -36,6 +36,7 @@
 
 #include <omp.h>
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -53,10 +54,8 @@ class NeighbourList {
     fluidCount = std::min(fluidCount, n);
     const bool walls = fluidCount < n || grid.hasWalls();
     if (cellWalk_) {
-      cells_ = {&grid, &x, radius * radius, fluidCount, n, walls};
-      const auto threads = static_cast<std::size_t>(omp_get_max_threads());
-      if (slots_.size() < threads) slots_.resize(threads);
-      for (Slot& s : slots_) s.stencil.valid = false;  // the grid changed
+      static std::atomic<std::uint64_t> builds{0};
+      cells_ = {&grid, &x, radius * radius, fluidCount, n, walls, ++builds};  // the grid changed
       return;
     }
     if (walls) wallBegin_.resize(n);
@@ -166,7 +165,6 @@ class NeighbourList {
     std::size_t b = (begin_.capacity() + wallBegin_.capacity()) * sizeof(std::uint32_t) +
                     chunkStart_.capacity() * sizeof(std::size_t);
     for (const auto& c : chunks_) b += c.capacity() * sizeof(std::uint32_t);
-    for (const Slot& s : slots_) b += sizeof(Slot) + s.list.capacity() * sizeof(std::uint32_t);
     return b;
   }
 
@@ -186,9 +184,15 @@ class NeighbourList {
   }
 
   // The cell walk's row of particle i, scanned into the calling thread's
-  // buffer exactly as build() would have listed it.
+  // buffer exactly as build() would have listed it. (So a visit of one
+  // particle's neighbours must not start another visit in the same thread:
+  // no pass nests them.)
   [[gnu::noinline]] Run scanCells(std::size_t i) const {
-    Slot& s = slots_[static_cast<std::size_t>(omp_get_thread_num())];
+    static thread_local Slot s;
+    if (s.build != cells_.build) {
+      s.build = cells_.build;
+      s.stencil.valid = false;
+    }
     const std::vector<Vec<D>>& x = *cells_.x;
     const Vec<D> xi = x[i];
     cells_.grid->updateStencil(xi, s.stencil);
@@ -200,22 +204,25 @@ class NeighbourList {
     return {s.list.data(), 0, split, static_cast<std::uint32_t>(used)};
   }
 
-  // The cell walk's state: what build() was given, and per thread a
-  // stencil (recomputed only when the cell changes) and a row buffer.
+  // The cell walk's state: what build() was given.
   struct CellWalk {
     const HashGrid<D>* grid = nullptr;
     const std::vector<Vec<D>>* x = nullptr;
     Real radius2 = 0;
     std::size_t fluidCount = 0, n = 0;
     bool walls = false;
+    std::uint64_t build = 0;  // unique over every list's builds
   };
-  struct alignas(64) Slot {
+  // A thread's (thread_local: whatever the thread count, which the
+  // thread tuner may change between builds); `build` tells whether its
+  // stencil belongs to the current build of this list.
+  struct Slot {
+    std::uint64_t build = 0;
     typename HashGrid<D>::Stencil stencil;
     std::vector<std::uint32_t> list;
   };
   bool cellWalk_ = false;
   CellWalk cells_;
-  mutable std::vector<Slot> slots_;
 
   std::vector<std::vector<std::uint32_t>> chunks_;  // one flat buffer per thread
   std::vector<std::size_t> used_;                   // entries in use per chunk
