@@ -131,9 +131,14 @@ void RunOutput<D>::flushTimeSteps() {
 template <int D>
 void RunOutput<D>::writeLog(const std::string& file, std::string& text) {
   const std::string path = (dir_ / file).string();
-  if (onDisk_.insert(file).second) writeFileAtomically(path, text);
-  else if (!text.empty()) appendToFile(path, text);
-  text.clear();
+  if (!onDisk_.count(file)) {
+    writeFileAtomically(path, text);
+    onDisk_.insert(file);
+    std::string().swap(text);  // a resumed run's rows up to its snapshot: release them
+  } else if (!text.empty()) {
+    appendToFile(path, text);
+    text.clear();
+  }
   record_.addFile(file);
 }
 

@@ -6,7 +6,7 @@
 //   the cell walk visits exactly the stored list's rows, fluid and wall
 //   neighbours apart, in the list's order, serially and from two threads;
 //   still after the particles moved (the walk keeps the build's positions,
-//   as the list keeps the build's pairs); and it stores almost nothing.
+//   as the list keeps the build's pairs); and it releases the list's storage.
 // - Runs: a run with cells is the run with the list bit for bit (tolerance
 //   0: the same pairs summed in the same order): the water dam break (skin
 //   0.1, 2 threads), the periodic Poiseuille channel (ghosts), the dam break
@@ -96,11 +96,15 @@ void checkRows(std::size_t n, unsigned seed) {
   BOOST_TEST((rows(walked, Q.size(), 1) == expected), D << "D, one thread");
   BOOST_TEST((rows(walked, Q.size(), 2) == expected), D << "D, two threads");
   BOOST_TEST(walked.pairCount() == stored.pairCount());
+  // A copy (or a moved scene's list) does not point at another's build.
+  const NeighbourList<D> copy = walked;
+  BOOST_TEST(walked.bound());
+  BOOST_TEST(!copy.bound());
   // Moved by up to a tenth of the skin: both still give the build's pairs.
   for (std::size_t i = 0; i < Q.size(); ++i)
     for (int d = 0; d < D; ++d) Q.x[i][d] += (u(rng) - 0.5) * 0.1 * skin * support;
   BOOST_TEST((rows(walked, Q.size(), 2) == expected), D << "D, after the particles moved");
-  // Nothing stored but one row per thread.
+  // Nothing stored (the row buffers, one row per thread, are not counted).
   BOOST_TEST(walked.bytesAllocated() * 20 < stored.bytesAllocated(),
              walked.bytesAllocated() << " bytes against the list's " << stored.bytesAllocated());
 }

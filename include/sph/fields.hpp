@@ -54,7 +54,7 @@ enum FieldId : unsigned {
   kFieldCurvature,        // curvature kappa of the colour field's surface (surface tension)
   kFieldVPrev,     // two-step leap-frog: the filtered velocity of the step before
   kFieldRhoPrev,   // ... and density
-  kFieldXList,     // position at the neighbour list's last build (skin > 0) [m]
+  kFieldXList,     // position at the neighbour list's last build (skin > 0, or the cell walk) [m]
   kFieldCount
 };
 

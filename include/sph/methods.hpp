@@ -364,7 +364,7 @@ inline const std::vector<Method<bool>>& negativePressureMethods() {
 // How the passes visit each particle's neighbours (neighbour_walk key;
 // neighbour_list.hpp): from a list stored at each build, or by scanning the
 // grid's cells again at every visit. The same pairs in the same order, so
-// the same results; builds whether the cells are walked.
+// the same results; make() says whether the cells are walked.
 inline const std::vector<Method<bool>>& neighbourWalkMethods() {
   static const std::vector<Method<bool>> m = {
       {"list", "the pairs stored at each build of the neighbour list and read back by every pass (the faster)",

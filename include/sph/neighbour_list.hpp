@@ -1,6 +1,7 @@
 // NeighbourList<D>: every pair (i, j != i) closer than the support radius,
-// found once per step from the hashed grid and shared by all passes (density,
-// forces, diagnostics), so the cell stencil is scanned once, not per pass.
+// found once per build from the hashed grid and shared by all passes
+// (density, forces, diagnostics), so the cell stencil is scanned once, not
+// per pass (unless the cells are walked instead: below).
 //
 // Storage is CSR per thread: the particles are split into one contiguous
 // chunk per OpenMP thread; thread t appends the neighbours of its chunk to its
@@ -23,8 +24,9 @@
 //
 // Cell walk (neighbour_walk = cells): no list is stored; each visit of a
 // particle's neighbours scans the grid's stencil around it again, as
-// DualSPHysics' cell-linked list does, into a small per-thread buffer
-// that the visit then walks. The scan is the build's own (scan(), the same
+// in DualSPHysics' cell-linked list, into a small per-thread buffer
+// that the visit then walks (DualSPHysics walks the cells' particles
+// directly, without such a row). The scan is the build's own (scan(), the same
 // stencil of the particle's cell at the positions of the last build, the
 // same distance test there), so it yields the list's pairs in the list's
 // order and every result is bit for bit the stored list's; it trades the
@@ -55,7 +57,13 @@ class NeighbourList {
     const bool walls = fluidCount < n || grid.hasWalls();
     if (cellWalk_) {
       static std::atomic<std::uint64_t> builds{0};
-      cells_ = {&grid, &x, radius * radius, fluidCount, n, walls, ++builds};  // the grid changed
+      cells_.grid = &grid;
+      cells_.x = &x;
+      cells_.radius2 = radius * radius;
+      cells_.fluidCount = fluidCount;
+      cells_.n = n;
+      cells_.walls = walls;
+      cells_.build = ++builds;  // the grid changed
       return;
     }
     if (walls) wallBegin_.resize(n);
@@ -150,6 +158,9 @@ class NeighbourList {
     usedChunks_ = 0;
   }
   bool cellWalk() const { return cellWalk_; }
+  // Whether a cell walk has the grid and positions of a build (not after a
+  // copy or a move of the list).
+  bool bound() const { return !cellWalk_ || cells_.grid != nullptr; }
 
   std::size_t pairCount() const {
     std::size_t total = 0;
@@ -204,8 +215,17 @@ class NeighbourList {
     return {s.list.data(), 0, split, static_cast<std::uint32_t>(used)};
   }
 
-  // The cell walk's state: what build() was given.
+  // The cell walk's state: what build() was given. Not carried by a copy
+  // or a move (it points at the grid and positions of its owner's build):
+  // a moved list is unbound until its next build.
   struct CellWalk {
+    CellWalk() = default;
+    CellWalk(const CellWalk&) {}
+    CellWalk& operator=(const CellWalk&) {
+      grid = nullptr;
+      x = nullptr;
+      return *this;
+    }
     const HashGrid<D>* grid = nullptr;
     const std::vector<Vec<D>>* x = nullptr;
     Real radius2 = 0;

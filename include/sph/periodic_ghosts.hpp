@@ -35,6 +35,7 @@
 #include "sph/periodic_box.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -150,6 +151,7 @@ void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours
     neighbours.build(grid, P.x, radius, P.fluidCount(), P.size());
     return;
   }
+  if (P.xList.size() != P.x.size()) throw std::logic_error("sortByCell: a cell walk needs xList allocated");
   std::copy(P.x.begin(), P.x.end(), P.xList.begin());
   neighbours.build(grid, P.xList, radius, P.fluidCount(), P.size());
 }

@@ -130,7 +130,7 @@ class Scene {
   // skin, sort and build it; with one, keep it if it still holds (the
   // ghosts refreshed), else rebuild. (Each evaluation calls it.)
   void prepareList() {
-    if (skin_ == 0 || !listStillHolds()) sort();
+    if (skin_ == 0 || !neighbours_.bound() || !listStillHolds()) sort();
   }
   // Builds of the neighbour list so far (one per evaluation without a skin).
   long listBuilds() const { return listBuilds_; }

@@ -48,7 +48,8 @@ struct VtpParticles {
   std::vector<Real> colour;      // surface tension: the particles' phase colour
   std::vector<std::array<Real, 3>> vPrev;  // two-step leap-frog: filtered velocity and density of the step before
   std::vector<Real> rhoPrev;
-  std::vector<std::array<Real, 3>> xList;  // positions at the neighbour list's last build (neighbour_skin > 0)
+  // positions at the neighbour list's last build (neighbour_skin > 0 or neighbour_walk = cells)
+  std::vector<std::array<Real, 3>> xList;
 };
 
 // Reads the particles of a .vtp (src/vtp_read.cpp): one PolyData piece, in

@@ -338,7 +338,7 @@ class DomainDecomposition {
   void startHaloRefresh(const Particles<D>& P, FieldSet fields) {
     if (comm_.size == 1) return;
     if (!requests_.empty()) throw std::logic_error("DomainDecomposition: a halo refresh is already under way");
-    refreshFields_ = fields & P.allocated();
+    refreshFields_ = fields & P.allocated() & ~kListFields;  // a halo's build positions are its rank's own
     record_ = recordBytes(P, refreshFields_);
     if (record_ == 0) return;
     pack(P, refreshFields_, record_, sendIndex_, sendBuffer_);
