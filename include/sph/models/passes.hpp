@@ -21,4 +21,11 @@ using Pass = std::variant<SummationDensityPass<D>, EquationOfStatePass<D>, Adami
                           WcsphForcePass<D>, RepulsiveWallsPass<D>, CspmCorrectionPass<D>, ShepardDensityPass<D>,
                           MlsDensityPass<D>, ColourFieldPass<D>>;
 
+// The fields a pass reads and writes at this step (its fields(), declared
+// next to its run(); fields.hpp: FieldAccess).
+template <int D>
+FieldAccess passFields(const Pass<D>& pass, const StepContext& ctx) {
+  return std::visit([&](const auto& p) { return p.fields(ctx); }, pass);
+}
+
 }  // namespace sph
