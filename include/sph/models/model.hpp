@@ -2,9 +2,10 @@
 //
 // evaluate() runs the passes in order on the sorted particles and their
 // neighbour list, each with the step context (step index, time, dt);
-// between two passes sits sync(), which refreshes the periodic ghosts from
-// their sources (periodic_ghosts.hpp; all allocated fields: the passes do
-// not declare theirs yet), the hook where MPI halos will go too. A pass is one of the value types of passes.hpp
+// after every pass sits sync(), which refreshes the periodic ghosts of the
+// fields the pass wrote from their sources (periodic_ghosts.hpp; each pass
+// declares what it reads and writes, its fields(), fields.hpp), the hook
+// where MPI halos will go too. A pass is one of the value types of passes.hpp
 // and reports the term bits it ran, so a test can show that a switched-off
 // term never runs. A second, usually empty, list runs after a step on the
 // finished state (afterStep: the density re-initialisations), and the
@@ -131,10 +132,10 @@ class Model {
   }
 
  private:
-  // Between passes: the ghosts read what the pass wrote for their sources
-  // (every allocated field; later: only the pass's declared outputs, and
-  // the MPI halos).
-  void sync(Particles<D>& P) const { P.refreshGhosts(); }
+  // After a pass: the ghosts take from their sources the fields the pass
+  // wrote (its declared writes; the others they already hold, refreshed
+  // before the first pass by the scene). Later, the MPI halos too.
+  void sync(Particles<D>& P, FieldSet written) const { P.refreshGhosts(written); }
 
   unsigned runPasses(const std::vector<Pass<D>>& passes, Particles<D>& P, const NeighbourList<D>& neighbours,
                      StepContext ctx) const {
@@ -142,7 +143,7 @@ class Model {
     unsigned ran = 0;
     for (const Pass<D>& pass : passes) {
       ran |= std::visit([&](const auto& p) { return p.run(P, neighbours, ctx); }, pass);
-      sync(P);
+      sync(P, passFields(pass, ctx).writes);
     }
     return ran;
   }
