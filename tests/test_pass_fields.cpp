@@ -9,7 +9,9 @@
 // CSPM, Shepard and MLS re-initialisation, dynamic and repulsive walls,
 // summation density, XSPH, the curvature methods, artificial pressure), in
 // every mode the step gives it (the density rate in the force pass or apart;
-// a re-initialisation due), on the state after two steps:
+// a re-initialisation due), for the density-rate pass the leap-frog and
+// symplectic Euler integrators run apart and for the scene's own passes at
+// the start of a step (shifting, wall motion), on the state after two steps:
 //   (a) every field outside its writes is bit for bit what it was, at every
 //       particle, ghosts included;
 //   (b) poisoned fields outside its reads (NaN; the integer fields a value
@@ -172,13 +174,21 @@ void checkScene(const std::string& name, const CaseConfig& c) {
           std::visit([&](const auto& p) { p.run(Q, list, ctx); }, pass);
         });
         ++passes;
-        if (const auto* f = std::get_if<WcsphForcePass<D>>(&pass); f && !apart)
-          failures += checkPass<D>(name + " density-rate pass", P, f->densityRateFields(),
-                                   [&](Particles<D>& Q) { f->densityRate(Q, list); });
       }
   };
   check(model.passes(), "model");
   check(model.afterStepPasses(), "after-step");
+  check(model.densityRatePasses(), "density-rate");
+  // The scene's own passes at the start of a step (shifting, wall motion).
+  const StepContext next{scene.stepIndex() + 1, scene.time() + ctx.dt, ctx.dt, scene.time()};
+  auto checkOwn = [&](const auto& pass, const char* what) {
+    if (!pass) return;
+    failures += checkPass<D>(name + " " + what + " pass", P, pass->fields(next),
+                             [&](Particles<D>& Q) { pass->run(Q, list, next); });
+    ++passes;
+  };
+  checkOwn(scene.shiftingPass(), "shifting");
+  checkOwn(scene.wallMotionPass(), "wall-motion");
   BOOST_TEST_MESSAGE(name << ": " << P.size() << " particles, " << P.totalSize() - P.size() << " ghosts, " << passes
                           << " pass runs checked, " << failures << " failures");
 }

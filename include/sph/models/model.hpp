@@ -8,7 +8,9 @@
 // where MPI halos will go too. A pass is one of the value types of passes.hpp
 // and reports the term bits it ran, so a test can show that a switched-off
 // term never runs. A second, usually empty, list runs after a step on the
-// finished state (afterStep: the density re-initialisations), and the
+// finished state (afterStep: the density re-initialisations), a third when
+// the integrator asks for the density rate apart (densityRate: the
+// density-rate pass, density_rate.hpp, with continuity density), and the
 // passes add what the kernel corrections did to the model's counts. The presets that build the lists are in seed_wcsph.hpp
 // and wcsph.hpp.
 //
@@ -47,8 +49,12 @@ class Model {
     bool forcesSeeHalfStepVelocity = false;
   };
 
-  Model(Info info, std::vector<Pass<D>> passes, std::vector<Pass<D>> afterStep = {})
-      : info_(std::move(info)), passes_(std::move(passes)), afterStep_(std::move(afterStep)) {}
+  Model(Info info, std::vector<Pass<D>> passes, std::vector<Pass<D>> afterStep = {},
+        std::vector<Pass<D>> densityRate = {})
+      : info_(std::move(info)),
+        passes_(std::move(passes)),
+        afterStep_(std::move(afterStep)),
+        densityRate_(std::move(densityRate)) {}
 
   // rho (or its rate), p, a and the other rates at the current state. The
   // neighbour list must have been built on these positions.
@@ -58,13 +64,11 @@ class Model {
   }
 
   // d rho/dt alone, at the particles' x and v with the given neighbour list
-  // (the force pass's continuity and diffusion terms in a loop of their
-  // own): for the integrators that advance rho like a position. Nothing
-  // without continuity density.
+  // (the density-rate list: the continuity and diffusion terms in a loop of
+  // their own, synced as every pass): for the integrators that advance rho
+  // like a position. Nothing without continuity density.
   void densityRate(Particles<D>& P, const NeighbourList<D>& neighbours) const {
-    densityRateBits_ = 0;
-    for (const Pass<D>& pass : passes_)
-      if (const auto* f = std::get_if<WcsphForcePass<D>>(&pass)) densityRateBits_ |= f->densityRate(P, neighbours);
+    densityRateBits_ = densityRate_.empty() ? 0u : runPasses(densityRate_, P, neighbours, StepContext{});
   }
 
   // After step ctx.step has finished (the state check passed): the passes
@@ -104,6 +108,7 @@ class Model {
   bool forcesSeeHalfStepVelocity() const { return info_.forcesSeeHalfStepVelocity; }
   const std::vector<Pass<D>>& passes() const { return passes_; }
   const std::vector<Pass<D>>& afterStepPasses() const { return afterStep_; }
+  const std::vector<Pass<D>>& densityRatePasses() const { return densityRate_; }
   // The term bits the last evaluate() and the afterStep() after it ran (term_bits.hpp).
   unsigned executedTerms() const { return executed_ | executedAfterStep_; }
   // What the kernel corrections did so far (step_context.hpp).
@@ -151,6 +156,7 @@ class Model {
   Info info_;
   std::vector<Pass<D>> passes_;
   std::vector<Pass<D>> afterStep_;
+  std::vector<Pass<D>> densityRate_;
   mutable unsigned executed_ = 0, executedAfterStep_ = 0, densityRateBits_ = 0;
   mutable CorrectionCounts counts_;
 };

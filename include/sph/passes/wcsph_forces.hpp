@@ -115,17 +115,6 @@ struct WcsphForcePass {
                             (xsphEpsilon > 0 ? fieldBit(kFieldVXsph) : 0u);
     return {reads, writes};
   }
-
-  // d rho/dt alone (continuity, its diffusion, the dynamic walls' rates) at
-  // the particles' x and v, with the given neighbour list: for the
-  // integrators that advance rho like a position (ctx.densityRateApart).
-  unsigned densityRate(Particles<D>& P, const NeighbourList<D>& neighbours) const;
-  // densityRate() reads x, m and v (rho for the diffusion); writes d rho/dt.
-  FieldAccess densityRateFields() const {
-    if (!continuity) return {};
-    return {fieldBits(kFieldX, kFieldM, kFieldV) | (diffusion.active() ? fieldBit(kFieldRho) : 0u),
-            fieldBit(kFieldDrho)};
-  }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).
@@ -159,25 +148,6 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
       kernel, viscosity);
   const unsigned wallBits = walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
   return bits | wallBits | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
-}
-
-template <int D>
-unsigned WcsphForcePass<D>::densityRate(Particles<D>& P, const NeighbourList<D>& neighbours) const {
-  if (!continuity) return 0;
-  const unsigned bits = std::visit(
-      [&](const auto& k) {
-        auto loop = [&](const auto& correct) {
-          const ContinuityDensity rate{true};
-          return runPairLoop(P, neighbours, k, k.support(), std::make_tuple(rate, diffusion), std::make_tuple(rate),
-                             std::make_tuple(ContinuityDensity{walls.densityRates}), DensityRateEpilogue<D>{},
-                             DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, walls.densityRates}, correct);
-        };
-        // The continuity sum takes the plain grad W, CSPM or not
-        // (continuity_density.hpp): no correction to form here.
-        return loop(NoGradientCorrection{});
-      },
-      kernel);
-  return bits | (walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u);
 }
 
 extern template struct WcsphForcePass<2>;
