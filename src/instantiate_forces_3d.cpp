@@ -1,9 +1,12 @@
-// The wcsph force pass in 3D, compiled once for the program: its pair loop is
-// instantiated per kernel x viscosity x separation x gradient correction, and
-// every other translation unit sees only the declaration of run()
-// (extern template in wcsph_forces.hpp).
+// The wcsph force pass and the density-rate pass in 3D, compiled once for
+// the program: their pair loops are instantiated per kernel (x viscosity
+// for the forces), and every other translation unit sees only the
+// declarations of run() (extern template in wcsph_forces.hpp and
+// density_rate.hpp).
+#include "sph/passes/density_rate.hpp"
 #include "sph/passes/wcsph_forces.hpp"
 
 namespace sph {
 template struct WcsphForcePass<3>;
+template struct DensityRatePass<3>;
 }  // namespace sph

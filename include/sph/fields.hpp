@@ -62,6 +62,25 @@ using FieldSet = std::uint32_t;
 
 constexpr FieldSet fieldBit(FieldId f) { return FieldSet(1) << f; }
 
+// The set of the fields given.
+template <class... F>
+constexpr FieldSet fieldBits(F... f) {
+  return (FieldSet(0) | ... | fieldBit(f));
+}
+
+// What a pass of a model reads and writes (each pass's fields(), next to its
+// run(); Model::sync()): `reads`, the fields whose values, at a particle or
+// at its neighbours (ghosts included), its results depend on; `writes`, the
+// fields it may change (of the owned particles: a pass never writes a
+// ghost's own value, except by copying it from its source). A field a pass
+// writes without reading first is not in `reads`; one it adds to (a += ...)
+// is in both. The ghosts of `writes` are refreshed after the pass; a halo
+// exchange carries `reads`. tests/test_pass_fields.cpp checks both sets.
+struct FieldAccess {
+  FieldSet reads = 0;
+  FieldSet writes = 0;
+};
+
 // The fields every scene has.
 constexpr FieldSet kCoreFields = fieldBit(kFieldX) | fieldBit(kFieldV) | fieldBit(kFieldA) |
                                  fieldBit(kFieldRho) | fieldBit(kFieldP) | fieldBit(kFieldM) |

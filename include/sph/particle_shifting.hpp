@@ -48,7 +48,7 @@ class ParticleShifting {
 
   // x_i += dr_i for the fluid particles; `neighbours` built on these
   // positions. dr is formed for every particle before any moves.
-  void apply(Particles<D>& P, const NeighbourList<D>& neighbours, Real dt) {
+  void apply(Particles<D>& P, const NeighbourList<D>& neighbours, Real dt) const {
     const std::size_t n = P.fluidCount();
     shift_.resize(n);
     std::visit(
@@ -95,7 +95,7 @@ class ParticleShifting {
  private:
   Kernel<D> kernel_;
   Real coefficient_, spacing_, rho0_;
-  std::vector<Vec<D>> shift_;  // reused: no allocation after the first step
+  mutable std::vector<Vec<D>> shift_;  // scratch, reused: no allocation after the first step
 };
 
 }  // namespace sph

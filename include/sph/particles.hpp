@@ -253,7 +253,7 @@ struct Particles : FieldArrays<D> {
   // Copy the fields in `fields` (all allocated ones by default) of every
   // ghost from its source; x becomes the source's x plus the shift.
   void refreshGhosts(FieldSet fields = ~FieldSet(0)) {
-    if (ghostSource_.empty()) return;
+    if (ghostSource_.empty() || (fields & allocated_ & ~kListFields) == 0) return;
 #pragma omp parallel if (ghostSource_.size() >= kMinParallelSize)
     refreshGhostsInTeam(fields);
   }

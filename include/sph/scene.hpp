@@ -28,7 +28,9 @@
 // seed scheme). The ghosts are refreshed from their
 // sources wherever the owned particles changed and a neighbour walk follows:
 // between passes (Model::sync), before the integrators' density-rate pass,
-// after the mass scaling and after each step. One step = the integrator's advance (as many evaluate() calls as it
+// after the mass scaling and after each step. One step = the scene's own
+// passes at its start (shifting, wall motion: passes/step_start.hpp, each
+// followed by the ghosts of what it wrote), the integrator's advance (as many evaluate() calls as it
 // needs: 1 for leap-frog and the Euler schemes, 4 for RK4; the walls act on
 // each particle right after its position update), then one loop that
 // finishes every particle, checks the state and reduces what the next time
@@ -44,7 +46,7 @@
 #include "sph/models/wcsph.hpp"
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
-#include "sph/particle_shifting.hpp"
+#include "sph/passes/step_start.hpp"
 #include "sph/periodic_ghosts.hpp"
 #include "sph/state_check.hpp"
 #include "sph/time_step.hpp"
@@ -135,10 +137,14 @@ class Scene {
   // Builds of the neighbour list so far (one per evaluation without a skin).
   long listBuilds() const { return listBuilds_; }
   PeriodicBox<D> periodicBox() const { return ghosts_ ? ghosts_->box() : PeriodicBox<D>{}; }
-  // Particle shifting at the start of every step (particle_shifting.hpp).
-  void setShifting(ParticleShifting<D> shifting) { shifting_.emplace(std::move(shifting)); }
-  // A paddle's prescribed motion, moved at the start of every step (wall_motion.hpp).
-  void setWallMotion(const SinusoidalWallMotion<D>& motion) { wallMotion_ = motion; }
+  // Particle shifting at the start of every step (particle_shifting.hpp;
+  // a pass of the scene's, passes/step_start.hpp).
+  void setShifting(ParticleShifting<D> shifting) { shifting_.emplace(ShiftingPass<D>{std::move(shifting)}); }
+  // A paddle's prescribed motion, moved at the start of every step, after
+  // the shifting (wall_motion.hpp; passes/step_start.hpp).
+  void setWallMotion(const SinusoidalWallMotion<D>& motion) { wallMotion_.emplace(WallMotionPass<D>{motion}); }
+  const std::optional<ShiftingPass<D>>& shiftingPass() const { return shifting_; }
+  const std::optional<WallMotionPass<D>>& wallMotionPass() const { return wallMotion_; }
   // How often the guard put a fluid particle back (position updates it changed).
   long wallGuardActions() const { return guardActions_; }
 
@@ -230,6 +236,14 @@ class Scene {
 
   void evaluate();
 
+  // A pass of the scene's own (step_start.hpp), then the ghosts of the
+  // fields it declares it writes, as Model::sync does for the model's.
+  template <class StepPass>
+  void runPass(const StepPass& pass) {
+    pass.run(P_, neighbours_, context_);
+    P_.refreshGhosts(pass.fields(context_).writes);
+  }
+
   // One loop over the particles: finish(i), the state check, and (adaptive
   // time steps only) the extremes the next time step needs. Returns the
   // first failure.
@@ -270,8 +284,8 @@ class Scene {
   StateCheck<D> check_;
   TimeStepControl timeStep_;
   std::optional<PeriodicGhosts<D>> ghosts_;
-  std::optional<ParticleShifting<D>> shifting_;
-  std::optional<SinusoidalWallMotion<D>> wallMotion_;
+  std::optional<ShiftingPass<D>> shifting_;
+  std::optional<WallMotionPass<D>> wallMotion_;
   long guardActions_ = 0;
   FieldSet carriedMissing_ = 0;  // integrator state the particles came without
   bool listRecorded_ = false;     // the particles came with their list_build_position
@@ -330,11 +344,12 @@ template <int D>
 std::optional<StateFailure> Scene<D>::step(Real landOn) {
   const TimeStepChoice choice = timeStep_.next(extremes_, model_, time_, landOn);
   lastStep_ = choice;
-  context_ = StepContext{step_ + 1, time_ + choice.dt, choice.dt};
+  context_ = StepContext{step_ + 1, time_ + choice.dt, choice.dt, time_};
   WallGuard<D>* guard = walls_.guard();
   if (guard && wallMotion_ && guard->paddle >= 0) {
-    guard->paddleOffset = wallMotion_->displacement(time_ + choice.dt);  // the case places it at t = 0, where sin = 0
-    guard->paddleVelocity = wallMotion_->velocity(time_ + choice.dt);
+    // The case places the paddle at t = 0, where sin = 0.
+    guard->paddleOffset = wallMotion_->motion.displacement(time_ + choice.dt);
+    guard->paddleVelocity = wallMotion_->motion.velocity(time_ + choice.dt);
   }
   long guarded = 0;
   auto constrain = [&](Particles<D>& P, std::size_t i) {
@@ -344,8 +359,8 @@ std::optional<StateFailure> Scene<D>::step(Real landOn) {
     }
   };
   std::optional<StateFailure> failure;
-  if (shifting_) shifting_->apply(P_, neighbours_, choice.dt);
-  if (wallMotion_) wallMotion_->advance(P_, time_, time_ + choice.dt);
+  if (shifting_) runPass(*shifting_);
+  if (wallMotion_) runPass(*wallMotion_);
   if (auto* twoStep = std::get_if<TwoStepLeapFrog<D>>(&integrator_)) twoStep->step = step_;
   std::visit(
       [&](const auto& integrator) {

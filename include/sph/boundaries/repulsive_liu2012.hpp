@@ -48,6 +48,8 @@ struct RepulsiveWallsPass {
   RepulsiveForce force;
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
+  // run() reads x (and adds to a): a += the walls' force.
+  FieldAccess fields(const StepContext&) const { return {fieldBits(kFieldX, kFieldA), fieldBit(kFieldA)}; }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).

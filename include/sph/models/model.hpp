@@ -2,12 +2,15 @@
 //
 // evaluate() runs the passes in order on the sorted particles and their
 // neighbour list, each with the step context (step index, time, dt);
-// between two passes sits sync(), which refreshes the periodic ghosts from
-// their sources (periodic_ghosts.hpp; all allocated fields: the passes do
-// not declare theirs yet), the hook where MPI halos will go too. A pass is one of the value types of passes.hpp
+// after every pass sits sync(), which refreshes the periodic ghosts of the
+// fields the pass wrote from their sources (periodic_ghosts.hpp; each pass
+// declares what it reads and writes, its fields(), fields.hpp), the hook
+// where MPI halos will go too. A pass is one of the value types of passes.hpp
 // and reports the term bits it ran, so a test can show that a switched-off
 // term never runs. A second, usually empty, list runs after a step on the
-// finished state (afterStep: the density re-initialisations), and the
+// finished state (afterStep: the density re-initialisations), a third when
+// the integrator asks for the density rate apart (densityRate: the
+// density-rate pass, density_rate.hpp, with continuity density), and the
 // passes add what the kernel corrections did to the model's counts. The presets that build the lists are in seed_wcsph.hpp
 // and wcsph.hpp.
 //
@@ -46,8 +49,12 @@ class Model {
     bool forcesSeeHalfStepVelocity = false;
   };
 
-  Model(Info info, std::vector<Pass<D>> passes, std::vector<Pass<D>> afterStep = {})
-      : info_(std::move(info)), passes_(std::move(passes)), afterStep_(std::move(afterStep)) {}
+  Model(Info info, std::vector<Pass<D>> passes, std::vector<Pass<D>> afterStep = {},
+        std::vector<Pass<D>> densityRate = {})
+      : info_(std::move(info)),
+        passes_(std::move(passes)),
+        afterStep_(std::move(afterStep)),
+        densityRate_(std::move(densityRate)) {}
 
   // rho (or its rate), p, a and the other rates at the current state. The
   // neighbour list must have been built on these positions.
@@ -57,13 +64,11 @@ class Model {
   }
 
   // d rho/dt alone, at the particles' x and v with the given neighbour list
-  // (the force pass's continuity and diffusion terms in a loop of their
-  // own): for the integrators that advance rho like a position. Nothing
-  // without continuity density.
+  // (the density-rate list: the continuity and diffusion terms in a loop of
+  // their own, synced as every pass): for the integrators that advance rho
+  // like a position. Nothing without continuity density.
   void densityRate(Particles<D>& P, const NeighbourList<D>& neighbours) const {
-    densityRateBits_ = 0;
-    for (const Pass<D>& pass : passes_)
-      if (const auto* f = std::get_if<WcsphForcePass<D>>(&pass)) densityRateBits_ |= f->densityRate(P, neighbours);
+    densityRateBits_ = densityRate_.empty() ? 0u : runPasses(densityRate_, P, neighbours, StepContext{});
   }
 
   // After step ctx.step has finished (the state check passed): the passes
@@ -103,6 +108,7 @@ class Model {
   bool forcesSeeHalfStepVelocity() const { return info_.forcesSeeHalfStepVelocity; }
   const std::vector<Pass<D>>& passes() const { return passes_; }
   const std::vector<Pass<D>>& afterStepPasses() const { return afterStep_; }
+  const std::vector<Pass<D>>& densityRatePasses() const { return densityRate_; }
   // The term bits the last evaluate() and the afterStep() after it ran (term_bits.hpp).
   unsigned executedTerms() const { return executed_ | executedAfterStep_; }
   // What the kernel corrections did so far (step_context.hpp).
@@ -131,10 +137,10 @@ class Model {
   }
 
  private:
-  // Between passes: the ghosts read what the pass wrote for their sources
-  // (every allocated field; later: only the pass's declared outputs, and
-  // the MPI halos).
-  void sync(Particles<D>& P) const { P.refreshGhosts(); }
+  // After a pass: the ghosts take from their sources the fields the pass
+  // wrote (its declared writes; the others they already hold, refreshed
+  // before the first pass by the scene). Later, the MPI halos too.
+  void sync(Particles<D>& P, FieldSet written) const { P.refreshGhosts(written); }
 
   unsigned runPasses(const std::vector<Pass<D>>& passes, Particles<D>& P, const NeighbourList<D>& neighbours,
                      StepContext ctx) const {
@@ -142,7 +148,7 @@ class Model {
     unsigned ran = 0;
     for (const Pass<D>& pass : passes) {
       ran |= std::visit([&](const auto& p) { return p.run(P, neighbours, ctx); }, pass);
-      sync(P);
+      sync(P, passFields(pass, ctx).writes);
     }
     return ran;
   }
@@ -150,6 +156,7 @@ class Model {
   Info info_;
   std::vector<Pass<D>> passes_;
   std::vector<Pass<D>> afterStep_;
+  std::vector<Pass<D>> densityRate_;
   mutable unsigned executed_ = 0, executedAfterStep_ = 0, densityRateBits_ = 0;
   mutable CorrectionCounts counts_;
 };

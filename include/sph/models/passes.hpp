@@ -4,6 +4,7 @@
 
 #include "sph/passes/cspm_correction.hpp"
 #include "sph/passes/colour_field.hpp"
+#include "sph/passes/density_rate.hpp"
 #include "sph/passes/equation_of_state.hpp"
 #include "sph/passes/mls_density.hpp"
 #include "sph/passes/shepard_density.hpp"
@@ -19,6 +20,13 @@ namespace sph {
 template <int D>
 using Pass = std::variant<SummationDensityPass<D>, EquationOfStatePass<D>, AdamiWallsPass<D>, SeedForcePass<D>,
                           WcsphForcePass<D>, RepulsiveWallsPass<D>, CspmCorrectionPass<D>, ShepardDensityPass<D>,
-                          MlsDensityPass<D>, ColourFieldPass<D>>;
+                          MlsDensityPass<D>, ColourFieldPass<D>, DensityRatePass<D>>;
+
+// The fields a pass reads and writes at this step (its fields(), declared
+// next to its run(); fields.hpp: FieldAccess).
+template <int D>
+FieldAccess passFields(const Pass<D>& pass, const StepContext& ctx) {
+  return std::visit([&](const auto& p) { return p.fields(ctx); }, pass);
+}
 
 }  // namespace sph

@@ -160,7 +160,11 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
     info.termNames.push_back(s.reinit == DensityReinit::kShepard ? "shepard_density_reinit"
                                                                  : "mls_density_reinit_colagrossi2003");
   }
-  return Model<D>(info, std::move(passes), std::move(afterStep));
+  // The density rate the leap-frog and symplectic Euler integrators take
+  // apart (StepContext::densityRateApart): continuity and its diffusion.
+  std::vector<Pass<D>> densityRate;
+  if (continuity) densityRate.push_back(DensityRatePass<D>{s.kernel, forces.diffusion, walls});
+  return Model<D>(info, std::move(passes), std::move(afterStep), std::move(densityRate));
 }
 
 }  // namespace sph

@@ -21,6 +21,12 @@ struct ColourFieldPass {
   bool twoPhase = false;  // a colour region was given: difference forms
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
+  // run() reads the fluid neighbours' x, m, rho and colour; writes the
+  // fluid's colourNormal and curvature (the ghosts' normals and curvatures
+  // it refreshes itself, between its loops).
+  FieldAccess fields(const StepContext&) const {
+    return {fieldBits(kFieldX, kFieldM, kFieldRho, kFieldColour), fieldBits(kFieldColourNormal, kFieldCurvature)};
+  }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).

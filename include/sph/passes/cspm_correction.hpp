@@ -80,6 +80,10 @@ struct CspmCorrectionPass {
   WallSums walls{};  // what the walls add (not repulsive walls)
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
+  // run() reads the neighbours' x, m and rho; writes the fluid's cspmL.
+  FieldAccess fields(const StepContext&) const {
+    return {fieldBits(kFieldX, kFieldM, kFieldRho), fieldBit(kFieldCspmL)};
+  }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).

@@ -27,6 +27,10 @@ struct EquationOfStatePass {
   Real rho0 = 0;               // walls: the least density they may have
 
   unsigned run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const;
+  // run() reads rho; writes p and c (and the dynamic walls' rho, clamped).
+  FieldAccess fields(const StepContext&) const {
+    return {fieldBit(kFieldRho), fieldBits(kFieldP, kFieldC) | (walls.densityRates ? fieldBit(kFieldRho) : 0u)};
+  }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).

@@ -88,6 +88,7 @@ struct MlsDensityPass {
   bool clampNegative = false;  // negative_pressure = clamp
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
+  FieldAccess fields(const StepContext& ctx) const { return reinitFields(ctx, every); }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).

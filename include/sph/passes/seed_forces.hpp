@@ -55,6 +55,12 @@ struct SeedForcePass {
   BodyForces<D> bodies;
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
+  // run() reads x, m, rho and p (and v with the viscosity, what the body
+  // forces read); writes the fluid's a.
+  FieldAccess fields(const StepContext&) const {
+    return {fieldBits(kFieldX, kFieldM, kFieldRho, kFieldP) | (viscosity ? fieldBit(kFieldV) : 0u) | bodies.reads(),
+            fieldBit(kFieldA)};
+  }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).

@@ -67,6 +67,14 @@ inline void applyReinitialisedDensity(Particles<D>& P, const EquationOfState& eo
   std::visit([&](const auto& e) { computePressure(P, e, n, clampNegative); }, eos);
 }
 
+// What a density re-initialisation (Shepard's, MLS) reads and writes: on
+// the steps it is due, x, m and rho of the neighbours; rhoReinit and, by
+// applyReinitialisedDensity(), the fluid's rho, p and c. Else nothing.
+inline FieldAccess reinitFields(const StepContext& ctx, long every) {
+  if (!reinitDue(ctx, every)) return {};
+  return {fieldBits(kFieldX, kFieldM, kFieldRho), fieldBits(kFieldRhoReinit, kFieldRho, kFieldP, kFieldC)};
+}
+
 template <int D>
 struct ShepardDensityPass {
   Kernel<D> kernel;
@@ -76,6 +84,7 @@ struct ShepardDensityPass {
   bool clampNegative = false;  // negative_pressure = clamp
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
+  FieldAccess fields(const StepContext& ctx) const { return reinitFields(ctx, every); }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).

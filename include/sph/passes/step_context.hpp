@@ -19,9 +19,11 @@ struct StepContext {
   long step = 0;   // index of the step being computed (0: the initial state)
   Real time = 0;   // simulated time of the state being evaluated [s]
   Real dt = 0;     // the step's dt [s] (0 before the first step)
+  Real start = 0;  // simulated time at the step's start [s] (time - dt, without its round-off)
   // The integrator advances rho with a density rate of its own
-  // (Model::densityRate; leap-frog and symplectic Euler with continuity
-  // density): the force pass leaves d rho/dt alone.
+  // (Model::densityRate, the density-rate pass of density_rate.hpp;
+  // leap-frog and symplectic Euler with continuity density): the force
+  // pass leaves d rho/dt alone.
   bool densityRateApart = false;
   CorrectionCounts* counts = nullptr;  // where passes add their counts (the model's; none: not counted)
 };

@@ -44,6 +44,11 @@ struct SummationDensityPass {
   bool clampNegative = false;  // negative_pressure = clamp
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
+  // run() reads the neighbours' x and m; writes the fluid's rho, p and c
+  // (fields.hpp: FieldAccess).
+  FieldAccess fields(const StepContext&) const {
+    return {fieldBits(kFieldX, kFieldM), fieldBits(kFieldRho, kFieldP, kFieldC)};
+  }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).

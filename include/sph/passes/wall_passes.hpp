@@ -30,6 +30,12 @@ struct AdamiWallsPass {
   std::optional<SinusoidalWallMotion<D>> motion;  // a paddle's a_w (wall_motion.hpp)
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
+  // run() reads x, the fluid's p, rho and v and the wall's own v (its id:
+  // a paddle's); writes the walls' p, rho, vWall and c.
+  FieldAccess fields(const StepContext&) const {
+    return {fieldBits(kFieldX, kFieldP, kFieldRho, kFieldV) | (motion ? fieldBit(kFieldId) : 0u),
+            fieldBits(kFieldP, kFieldRho, kFieldVWall, kFieldC)};
+  }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).

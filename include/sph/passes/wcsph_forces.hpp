@@ -91,11 +91,30 @@ struct WcsphForcePass {
   std::optional<ColourSurfaceTension<D>> surfaceTension;  // from the colour pre-pass
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
-
-  // d rho/dt alone (continuity, its diffusion, the dynamic walls' rates) at
-  // the particles' x and v, with the given neighbour list: for the
-  // integrators that advance rho like a position (ctx.densityRateApart).
-  unsigned densityRate(Particles<D>& P, const NeighbourList<D>& neighbours) const;
+  // run() reads x, m, rho and p; v for the viscosity (vWall of the wall
+  // neighbours: laplacian and morris; c: monaghan), the continuity term and
+  // XSPH; cspmL with CSPM, the colour normal and curvature with surface
+  // tension, what the body forces read. It writes the fluid's a, d rho/dt
+  // (the walls' too when they have one) unless the integrator computes it
+  // apart, and the XSPH correction.
+  FieldAccess fields(const StepContext& ctx) const {
+    const bool rateHere = continuity && !ctx.densityRateApart;
+    const FieldSet viscous = std::visit(
+        [&](const auto& v) -> FieldSet {
+          using V = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<V, NoViscosity>) return 0;
+          else if constexpr (std::is_same_v<V, MonaghanViscosityChoice>) return fieldBits(kFieldV, kFieldC);
+          else return fieldBit(kFieldV) | (walls.inSums ? fieldBit(kFieldVWall) : 0u);
+        },
+        viscosity);
+    FieldSet reads = fieldBits(kFieldX, kFieldM, kFieldRho, kFieldP) | viscous | bodies.reads();
+    if (rateHere || xsphEpsilon > 0) reads |= fieldBit(kFieldV);
+    if (cspm) reads |= fieldBit(kFieldCspmL);
+    if (surfaceTension) reads |= ColourSurfaceTension<D>::kReads;
+    const FieldSet writes = fieldBit(kFieldA) | (rateHere ? fieldBit(kFieldDrho) : 0u) |
+                            (xsphEpsilon > 0 ? fieldBit(kFieldVXsph) : 0u);
+    return {reads, writes};
+  }
 };
 
 // Defined here, instantiated once (src/instantiate_*.cpp).
@@ -129,25 +148,6 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
       kernel, viscosity);
   const unsigned wallBits = walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
   return bits | wallBits | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
-}
-
-template <int D>
-unsigned WcsphForcePass<D>::densityRate(Particles<D>& P, const NeighbourList<D>& neighbours) const {
-  if (!continuity) return 0;
-  const unsigned bits = std::visit(
-      [&](const auto& k) {
-        auto loop = [&](const auto& correct) {
-          const ContinuityDensity rate{true};
-          return runPairLoop(P, neighbours, k, k.support(), std::make_tuple(rate, diffusion), std::make_tuple(rate),
-                             std::make_tuple(ContinuityDensity{walls.densityRates}), DensityRateEpilogue<D>{},
-                             DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, walls.densityRates}, correct);
-        };
-        // The continuity sum takes the plain grad W, CSPM or not
-        // (continuity_density.hpp): no correction to form here.
-        return loop(NoGradientCorrection{});
-      },
-      kernel);
-  return bits | (walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u);
 }
 
 extern template struct WcsphForcePass<2>;

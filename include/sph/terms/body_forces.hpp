@@ -25,6 +25,9 @@ struct BodyForces {
     if (damping) a += damping->acceleration(i, P);
   }
 
+  // The fields add() reads: the star's x, the damping's v (gravity none).
+  FieldSet reads() const { return (star ? fieldBit(kFieldX) : 0u) | (damping ? fieldBit(kFieldV) : 0u); }
+
   // The bits of the forces present (term_bits.hpp).
   unsigned bits() const {
     return (gravity ? UniformGravity<D>::bit : 0u) | (star ? StarAttraction<D>::bit : 0u) |

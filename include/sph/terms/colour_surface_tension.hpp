@@ -215,6 +215,9 @@ struct ColourSurfaceTension {
   Real sigma = 0;
   Real minNormal = 0;
 
+  // The fields acceleration() reads.
+  static constexpr FieldSet kReads = fieldBits(kFieldColourNormal, kFieldCurvature, kFieldRho);
+
   Vec<D> acceleration(std::size_t i, const Particles<D>& P) const {
     const Vec<D>& n = P.colourNormal[i];
     if (!(n.squaredNorm() > minNormal * minNormal)) return Vec<D>::Zero();

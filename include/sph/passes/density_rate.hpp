@@ -1,0 +1,60 @@
+// Pass: the density rate alone,
+//   d rho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij  + density diffusion
+// (continuity_density.hpp, density_diffusion.hpp), and the dynamic wall
+// particles' own rate from their fluid neighbours, at the particles'
+// current x and v. The leap-frog and symplectic Euler integrators advance
+// rho like a position, with a rate at a state of its own (half-step
+// positions and velocities; the new velocity): they run this pass apart
+// (Model::densityRate, the model's density-rate list) and the force pass
+// then leaves d rho/dt alone (StepContext::densityRateApart). The
+// continuity sum takes the plain grad W, CSPM or not
+// (continuity_density.hpp), so no correction is formed here. One pair loop
+// per kernel.
+#pragma once
+
+#include "sph/boundaries/wall_sums.hpp"
+#include "sph/kernels/kernels.hpp"
+#include "sph/pair_loop.hpp"
+#include "sph/passes/seed_forces.hpp"
+#include "sph/passes/step_context.hpp"
+#include "sph/terms/continuity_density.hpp"
+#include "sph/terms/density_diffusion.hpp"
+
+#include <tuple>
+#include <variant>
+
+namespace sph {
+
+template <int D>
+struct DensityRatePass {
+  Kernel<D> kernel;
+  DensityDiffusion<D> diffusion;  // coefficient 0: off
+  WallSums walls{};               // wall pairs (inSums), the walls' own rates (densityRates)
+
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
+  // run() reads x, m and v (rho for the diffusion); writes d rho/dt.
+  FieldAccess fields(const StepContext&) const {
+    return {fieldBits(kFieldX, kFieldM, kFieldV) | (diffusion.active() ? fieldBit(kFieldRho) : 0u),
+            fieldBit(kFieldDrho)};
+  }
+};
+
+// Defined here, instantiated once (src/instantiate_forces_*.cpp).
+template <int D>
+unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+  const unsigned bits = std::visit(
+      [&](const auto& k) {
+        const ContinuityDensity rate{true};
+        return runPairLoop(P, neighbours, k, k.support(), std::make_tuple(rate, diffusion), std::make_tuple(rate),
+                           std::make_tuple(ContinuityDensity{walls.densityRates}), DensityRateEpilogue<D>{},
+                           DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, walls.densityRates},
+                           NoGradientCorrection{});
+      },
+      kernel);
+  return bits | (walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u);
+}
+
+extern template struct DensityRatePass<2>;
+extern template struct DensityRatePass<3>;
+
+}  // namespace sph
