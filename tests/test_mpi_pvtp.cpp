@@ -278,6 +278,30 @@ void parallelSnapshotIsOneSet(std::size_t n, std::size_t fluid) {
 
 BOOST_AUTO_TEST_SUITE(pvtp)
 
+// One rank cannot write its piece (a folder has its name): every rank
+// throws, the failing one naming its piece, and no .pvtp is written (rank 0
+// did write its own piece: the summary is what must not exist).
+BOOST_AUTO_TEST_CASE(a_piece_that_cannot_be_written_leaves_no_pvtp) {
+  const Communicator c = world();
+  const auto dir = sharedFolder("unwritable", c);
+  const std::string pvtp = (dir / "snap_00001.pvtp").string();
+  const std::string blocked = (dir / pvtpPieceName(pvtp, c.size - 1)).string();
+  if (c.rank == 0) std::filesystem::create_directories(std::filesystem::path(blocked) / "in_the_way");
+  MPI_Barrier(c.comm);
+  const Particles<2> mine = partOf(knownSet<2>(20, 15), c);
+  std::string message;
+  try {
+    mpi::writeParallelSnapshot<2>(pvtp, mine, kInfo, c);
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  BOOST_TEST(!message.empty(), "rank " << c.rank << " did not throw");
+  if (c.rank == c.size - 1) BOOST_TEST(message.find(blocked) != std::string::npos, message);
+  MPI_Barrier(c.comm);
+  BOOST_TEST(!std::filesystem::exists(pvtp));
+  BOOST_TEST(!std::filesystem::exists(pvtp + ".tmp"));
+}
+
 BOOST_AUTO_TEST_CASE(every_rank_writes_its_piece_and_the_whole_set_reads_back_2d) { parallelSnapshotIsOneSet<2>(61, 47); }
 BOOST_AUTO_TEST_CASE(every_rank_writes_its_piece_and_the_whole_set_reads_back_3d) { parallelSnapshotIsOneSet<3>(40, 29); }
 
