@@ -51,7 +51,7 @@ void appendToFile(const std::string& path, const std::string& text) {
 }
 
 std::size_t removeStaleTemporaries(const std::filesystem::path& dir) {
-  static const char* suffixes[] = {".vtp.tmp", ".pvd.tmp", ".csv.tmp", ".json.tmp", ".case.tmp"};
+  static const char* suffixes[] = {".vtp.tmp", ".pvtp.tmp", ".pvd.tmp", ".csv.tmp", ".json.tmp", ".case.tmp"};
   std::vector<std::filesystem::path> stale;
   std::error_code ec;
   for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {

@@ -115,7 +115,7 @@ const std::vector<KeySpec>& caseKeys() {
        within(-1e6, 1e6), "0", nullptr},
       {"points", G::kScene, &C::points, "m", "Explicit particles: x y [z] per point", coordinate(), "none", nullptr},
       {"particle_file", G::kScene, &C::particleFile, "",
-       "Particles from a CSV (header x,y[,z][,vx,vy[,vz]]) or a .vtp written by sph; replaces the generators",
+       "Particles from a CSV (header x,y[,z][,vx,vy[,vz]]), a .vtp written by sph or a .pvtp (a parallel snapshot); replaces the generators",
        {}, "none", nullptr},
       {"star_mass", G::kScene, &C::starMass, "kg", "Toy star mass M (not given: no star; model wcsph, eos polytropic)",
        above(0, 1e12), "none", nullptr},

@@ -252,8 +252,8 @@ void addFile(InitialState<D>& s, FromFile<D>& file, const CaseConfig& c) {
     throw CaseError("particle_file " + c.particleFile + " does not exist or is not a file");
   const std::string ext = path.extension().string();
   if (ext == ".csv") addCsv(s.particles, c.particleFile);
-  else if (ext == ".vtp") addVtp(s, file, c.particleFile);
-  else throw CaseError("particle_file " + c.particleFile + " must end in .csv or .vtp");
+  else if (ext == ".vtp" || ext == ".pvtp") addVtp(s, file, c.particleFile);
+  else throw CaseError("particle_file " + c.particleFile + " must end in .csv, .vtp or .pvtp");
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ constexpr const char* kCaseFile = "run.case";
 // Files only sph writes: a folder holding one of these holds sph output.
 bool looksLikeSphOutput(const std::filesystem::path& p) {
   const std::string name = p.filename().string(), ext = p.extension().string();
-  return ext == ".pvd" || ext == ".vtp" || name == "energy.csv" || name == "timestep.csv" ||
+  return ext == ".pvd" || ext == ".vtp" || ext == ".pvtp" || name == "energy.csv" || name == "timestep.csv" ||
          name == kCaseFile;
 }
 

@@ -397,7 +397,8 @@ const Element* onlyChild(const Header& h, const Element& parent, const std::stri
 }
 
 // Everything that can be checked before VTK reads the file.
-Layout checkLayout(const std::string& path) {
+// allowEmpty: a piece of a .pvtp may hold no particles (a rank with none).
+Layout checkLayout(const std::string& path, bool allowEmpty) {
   File f;
   std::error_code ec;
   f.size = std::filesystem::file_size(path, ec);
@@ -441,7 +442,7 @@ Layout checkLayout(const std::string& path) {
   const Element& piece = *onlyChild(h, poly, "Piece", true, "<PolyData>");
   Layout L;
   L.points = parseCount(piece.attribute("NumberOfPoints"), "NumberOfPoints", kMaxCount);
-  if (L.points == 0) throw Problem("holds no particles (NumberOfPoints = 0)");
+  if (L.points == 0 && !allowEmpty) throw Problem("holds no particles (NumberOfPoints = 0)");
   const Element* points = onlyChild(h, piece, "Points", false, "<Piece>");
   if (!points) throw Problem("has no <Points> element: it holds no particle positions");
   if (points->children.size() != 1 || h.elements[static_cast<std::size_t>(points->children[0])].name != "DataArray")
@@ -629,11 +630,11 @@ class QuietVtk {
   vtkLogger::Verbosity verbosity_;
 };
 
-VtpParticles readChecked(const std::string& path) {
+VtpParticles readChecked(const std::string& path, bool allowEmpty = false) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Problem("does not exist or is not a file");
   QuietVtk quiet;
-  const Layout L = checkLayout(path);
+  const Layout L = checkLayout(path, allowEmpty);
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->SetFileName(path.c_str());
   reader->UpdateInformation();
@@ -753,10 +754,102 @@ VtpParticles readChecked(const std::string& path) {
   return out;
 }
 
+// ---- A parallel snapshot (.pvtp): its pieces, appended ----
+
+// The pieces' particles in the order the summary lists them (the ranks'
+// order), each piece read and checked as a .vtp (it may be empty). The
+// pieces must agree: the same arrays, TimeValue and step; ids unique across
+// all of them. VTK's own reader would append them too, but reads a missing
+// or damaged piece as no points with only a log message.
+VtpParticles readPvtpChecked(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw Problem("does not exist or is not a file");
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw Problem("cannot be read: " + ec.message());
+  if (size > kMaxHeaderBytes) throw Problem("is larger than a .pvtp summary can be (" + std::to_string(size) + " bytes)");
+  std::ifstream in(path, std::ios::binary);
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!in) throw Problem("cannot be read");
+  const Header h = parseHeader(text);
+  if (h.elements.empty() || h.elements[0].name != "VTKFile")
+    throw Problem("is not a VTK XML file (it has no <VTKFile> element)");
+  const std::string type = h.elements[0].attribute("type").value_or("");
+  if (type != "PPolyData")
+    throw Problem("is a VTK file of type \"" + printable(type) + "\": a .pvtp must be PPolyData");
+  const Element& poly = *onlyChild(h, h.elements[0], "PPolyData", true, "<VTKFile>");
+  std::vector<std::string> sources;
+  for (int c : poly.children) {
+    const Element& e = h.elements[static_cast<std::size_t>(c)];
+    if (e.name != "Piece") continue;
+    const std::string source = e.attribute("Source").value_or("");
+    if (source.empty()) throw Problem("piece " + std::to_string(sources.size()) + " has no Source file");
+    sources.push_back(source);
+  }
+  if (sources.empty()) throw Problem("lists no <Piece>");
+
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  VtpParticles all;
+  std::string first;  // the first piece with particles: the others must match it
+  for (const std::string& source : sources) {
+    VtpParticles p;
+    const std::filesystem::path file = folder / source;  // an absolute Source stays as it is
+    try {
+      p = readChecked(file.string(), /*allowEmpty=*/true);
+    } catch (const Problem& e) {
+      throw Problem("its piece " + file.string() + ": " + e.what());
+    }
+    if (p.x.empty()) continue;
+    const std::string piece = "its piece " + file.string();
+    if (first.empty()) {
+      first = file.string();
+      all.time = p.time;
+      all.step = p.step;
+      all.hasVelocity = p.hasVelocity;
+    } else if (p.time != all.time || p.step != all.step) {
+      throw Problem(piece + " is of time " + significant(p.time) + ", step " + std::to_string(p.step) + ", but " +
+                    first + " of time " + significant(all.time) + ", step " + std::to_string(all.step));
+    }
+    const std::size_t before = all.x.size();
+    auto append = [&](auto& to, const auto& from, const char* name) {
+      if (before > 0 && to.empty() != from.empty())
+        throw Problem(piece + (from.empty() ? " lacks" : " has") + " the array \"" + name + "\", but " + first +
+                      (from.empty() ? " has it" : " does not"));
+      to.insert(to.end(), from.begin(), from.end());
+    };
+    append(all.x, p.x, "Points");
+    append(all.v, p.v, "velocity");
+    append(all.m, p.m, "mass");
+    append(all.id, p.id, "id");
+    append(all.a, p.a, "acceleration");
+    append(all.vXsph, p.vXsph, "xsph_velocity");
+    append(all.rho, p.rho, "density");
+    append(all.drho, p.drho, "density_rate");
+    // A piece without walls may lack "kind" (a rank's particles allocate it
+    // only when they include walls): its particles are fluid (kind 0).
+    if (!all.kind.empty() || !p.kind.empty()) {
+      all.kind.resize(before, 0);
+      if (p.kind.empty()) p.kind.assign(p.x.size(), 0);
+    }
+    append(all.kind, p.kind, "kind");
+    append(all.colour, p.colour, "colour");
+    append(all.vPrev, p.vPrev, "velocity_previous");
+    append(all.rhoPrev, p.rhoPrev, "density_previous");
+    append(all.xList, p.xList, "list_build_position");
+  }
+  if (all.x.empty()) throw Problem("holds no particles (all its pieces are empty)");
+  std::vector<std::int64_t> sorted = all.id;
+  std::sort(sorted.begin(), sorted.end());
+  if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+    throw Problem("id " + std::to_string(*twice) + " appears in more than one of its pieces: ids must be unique");
+  return all;
+}
+
 }  // namespace
 
 VtpParticles readVtp(const std::string& path) {
   try {
+    if (std::filesystem::path(path).extension() == ".pvtp") return readPvtpChecked(path);
     return readChecked(path);
   } catch (const Problem& e) {
     throw std::runtime_error(path + ": " + e.what());

@@ -123,7 +123,7 @@ BOOST_AUTO_TEST_CASE(malformed_particle_files) {
   expectRejected({"--particle_file", writeFile("nohead.csv", "1,2\n3,4\n")}, "needs columns x, y");
   expectRejected({"--particle_file", writeFile("text.csv", "x,y\n0.5,abc\n")}, "line 2: column 2 is not a finite number");
   expectRejected({"--particle_file", writeFile("fake.vtp", "not xml at all")}, "fake.vtp");
-  expectRejected({"--particle_file", writeFile("p.txt", "x,y\n0.5,0.5\n")}, "must end in .csv or .vtp");
+  expectRejected({"--particle_file", writeFile("p.txt", "x,y\n0.5,0.5\n")}, "must end in .csv, .vtp or .pvtp");
 }
 
 BOOST_AUTO_TEST_CASE(output_folder_cannot_be_created) {

@@ -3,6 +3,7 @@
 #include "pvd_reader.hpp"
 #include "test_support.hpp"
 
+#include "sph/io/pvtp_io.hpp"
 #include "sph/io/snapshot_polydata.hpp"
 #include "sph/io/vtp_io.hpp"
 #include "sph/particle_sources.hpp"
@@ -258,6 +259,70 @@ BOOST_AUTO_TEST_CASE(every_layout_vtk_writes_is_read_the_same) {
           ++files;
         }
   BOOST_TEST(files == 32);
+}
+
+// A parallel snapshot made without MPI: pieces written as the ranks would
+// (writeVtp), one of them empty, and the summary. sph's reader appends the
+// pieces in order; a piece that is missing, damaged or of another time gives
+// one line naming the .pvtp and the piece. (The ranks writing their pieces:
+// test_mpi_pvtp.cpp, label mpi.)
+BOOST_AUTO_TEST_CASE(pvtp_pieces_are_read_in_order_and_bad_pieces_named) {
+  const auto dir = test::scratchDir("pvtp");
+  const Particles<2> P = distinctParticles<2>(23, 17);
+  const SnapshotInfo info{0.5, 3, 0.01, 0.0075, {0, 0}, {1, 1}};
+  // Pieces 0 and 2 hold the particles [0, 10) and [10, 23); piece 1 none.
+  auto piece = [&](std::size_t from, std::size_t to) {
+    Particles<2> Q;
+    Q.x.assign(P.x.begin() + static_cast<long>(from), P.x.begin() + static_cast<long>(to));
+    Q.resize(to - from, from < 17 ? std::min<std::size_t>(17, to) - from : 0);
+    Q.allocate(P.allocated());
+    for (std::size_t k = 0; k < to - from; ++k) {
+      Q.v[k] = P.v[from + k];
+      Q.a[k] = P.a[from + k];
+      Q.xList[k] = P.xList[from + k];
+      Q.rho[k] = P.rho[from + k];
+      Q.drho[k] = P.drho[from + k];
+      Q.m[k] = P.m[from + k];
+      Q.id[k] = P.id[from + k];
+    }
+    return Q;
+  };
+  const std::string pvtp = (dir / "snap_00002.pvtp").string();
+  auto pieceFile = [&](int r) { return (dir / pvtpPieceName(pvtp, r)).string(); };
+  BOOST_TEST(pvtpPieceName(pvtp, 2) == "snap_00002_2.vtp");
+  writeVtp<2>(pieceFile(0), piece(0, 10), info);
+  writeVtp<2>(pieceFile(1), piece(10, 10), info);
+  writeVtp<2>(pieceFile(2), piece(10, 23), info);
+  writePvtpSummary<2>(pvtp, P, info, 3);
+  BOOST_TEST(!std::filesystem::exists(pvtp + ".tmp"));
+
+  const std::string whole = (dir / "whole.vtp").string();
+  writeVtp<2>(whole, P, info);
+  expectSame(readVtp(pvtp), readVtp(whole), "the pieces appended = the whole set");
+
+  auto expectNamed = [&](const std::string& named, const std::string& what) {
+    try {
+      readVtp(pvtp);
+      BOOST_ERROR("read despite " << what);
+    } catch (const std::runtime_error& e) {
+      const std::string message = e.what();
+      BOOST_TEST(message.rfind(pvtp + ": its piece " + named, 0) == 0, message);
+      BOOST_TEST(message.find('\n') == std::string::npos, message);
+      BOOST_TEST(message.find(what) != std::string::npos, message);
+    }
+  };
+  // Another time in one piece.
+  writeVtp<2>(pieceFile(2), piece(10, 23), SnapshotInfo{0.75, 3, 0.01, 0.0075, {0, 0}, {1, 1}});
+  expectNamed(pieceFile(2), "is of time 0.75");
+  // A damaged piece.
+  {
+    std::ofstream out(pieceFile(2), std::ios::binary | std::ios::trunc);
+    out << "<VTKFile type=\"PolyData\"><PolyData>";
+  }
+  expectNamed(pieceFile(2), "truncated");
+  // A missing piece.
+  std::filesystem::remove(pieceFile(2));
+  expectNamed(pieceFile(2), "does not exist");
 }
 
 BOOST_AUTO_TEST_CASE(csv_particle_file_is_read) {

@@ -19,9 +19,10 @@
 #include "sph/particles.hpp"
 #include "sph/periodic_ghosts.hpp"
 
+#include "mpi_session_fixture.hpp"
+
 #include <algorithm>
 #include <cstdlib>
-#include <memory>
 #include <random>
 #include <set>
 #include <utility>
@@ -37,18 +38,7 @@ using sph::fieldBit;
 using sph::mpi::Communicator;
 using sph::mpi::DomainDecomposition;
 
-std::unique_ptr<sph::mpi::Session> gSession;
-
-struct MpiFixture {
-  MpiFixture() {
-    auto& suite = boost::unit_test::framework::master_test_suite();
-    gSession = std::make_unique<sph::mpi::Session>(suite.argc, suite.argv, true);
-  }
-  ~MpiFixture() { gSession.reset(); }
-};
-BOOST_TEST_GLOBAL_FIXTURE(MpiFixture);
-
-Communicator world() { return gSession->communicator(); }
+using sph::test::world;
 
 // The fields beyond the core ones that travel: a stage vector, a state
 // density rate, a scalar.

@@ -27,7 +27,7 @@ void appendToFile(const std::string& path, const std::string& text);
 
 inline std::string temporaryName(const std::string& path) { return path + ".tmp"; }
 
-// Deletes the temporaries of the files sph writes ("*.vtp.tmp", "*.pvd.tmp",
+// Deletes the temporaries of the files sph writes ("*.vtp.tmp", "*.pvtp.tmp", "*.pvd.tmp",
 // "*.csv.tmp", "*.json.tmp", "*.case.tmp": regular files only, in `dir` itself, not below)
 // that a run killed while writing left behind; returns how many it deleted.
 // Never throws: a folder that cannot be listed, or a file that cannot be

@@ -57,8 +57,11 @@ struct VtpParticles {
 // base64, compressed or not), decoded by VTK. The layout is checked
 // against the file before VTK reads it, VTK prints nothing, and the values
 // are checked (finite positions and velocities, masses > 0, unique ids,
-// TimeValue finite and >= 0). Throws std::runtime_error, one line starting
-// with the path, on any damaged or unsuitable file.
+// TimeValue finite and >= 0). A .pvtp (a parallel snapshot, pvtp_io.hpp):
+// every piece it lists read so, in its order, and appended (a piece may be
+// empty; all must have the same arrays, TimeValue and step; ids unique
+// across them). Throws std::runtime_error, one line starting with the path
+// (and naming the piece), on any damaged or unsuitable file.
 VtpParticles readVtp(const std::string& path);
 
 }  // namespace sph
