@@ -399,7 +399,8 @@ template <int D>
 void Scene<D>::sort() {
   sortByCell(P_, grid_, neighbours_, listRadius_, ghosts_ ? &*ghosts_ : nullptr, skin_ > 0);
   ++listBuilds_;
-  if (skin_ > 0) std::copy(P_.x.begin(), P_.x.begin() + static_cast<std::ptrdiff_t>(P_.size()), P_.xList.begin());
+  // (A cell walk had sortByCell copy them already, the ghosts' included.)
+  if (skin_ > 0 && !neighbours_.cellWalk()) std::copy(P_.x.begin(), P_.x.begin() + static_cast<std::ptrdiff_t>(P_.size()), P_.xList.begin());
 }
 
 // The snapshot holds the particles in the order of the last build and, in
