@@ -50,8 +50,9 @@ PvdSeries PvdSeries::load(const std::string& path) {
   return s;
 }
 
-void PvdSeries::add(Real time, long step, const std::string& relativeFile) {
+void PvdSeries::add(Real time, long step, const std::string& relativeFile, bool write) {
   entries_.push_back({time, step, relativeFile});
+  if (!write) return;
   std::string xml =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"

@@ -21,7 +21,9 @@
 // (mpi/domain_decomposition.hpp): the rest of its source is its slot in the
 // decomposition's receive buffer, which fills its fields; refreshGhosts()
 // and permute() leave its fields and its record alone (the record moves with
-// the particle).
+// the particle). The decomposition refreshes them: refreshGhosts(fields)
+// calls the remote refresh it was given (setRemoteRefresh) after the local
+// copies, on every rank at the same points of a step.
 //
 // permute() reorders the state and stage fields in one parallel pass,
 // through one scratch array per value type (vectors, scalars, ids, kinds,
@@ -158,7 +160,9 @@ struct Particles : FieldArrays<D> {
   std::size_t totalSize() const { return x.size(); }
   // Fluid particles are [0, fluidCount()), walls [fluidCount(), size()).
   std::size_t fluidCount() const { return fluid_; }
-  bool hasWalls() const { return fluid_ < size(); }
+  // Walls among the particles a pass sees: owned ones, or ghosts of walls
+  // (on an MPI rank that owns no wall, the halo may hold some).
+  bool hasWalls() const { return fluid_ < size() || ghostFluidEnd() < totalSize(); }
   // Ghosts of fluid particles are [size(), ghostFluidEnd()), of walls the rest.
   std::size_t ghostFluidEnd() const { return size() + ghostFluid_; }
   const std::vector<std::uint32_t>& ghostSource() const { return ghostSource_; }
@@ -247,16 +251,37 @@ struct Particles : FieldArrays<D> {
     this->forEachField([&](const FieldInfo& info, auto& field) {
       if ((allocated_ >> info.id) & 1u) growTo(field, total);
     });
-    refreshGhosts();
+    refreshLocalGhosts();
   }
 
   // Copy the fields in `fields` (all allocated ones by default) of every
-  // ghost from its source; x becomes the source's x plus the shift.
+  // ghost from its source; x becomes the source's x plus the shift. Then the
+  // halo particles' from their ranks (the remote refresh, when one is set:
+  // a collective call, made by every rank at the same point).
   void refreshGhosts(FieldSet fields = ~FieldSet(0)) {
+    refreshLocalGhosts(fields);
+    refreshRemoteGhosts(fields);
+  }
+
+  // The local ghosts only (periodic images of owned particles).
+  void refreshLocalGhosts(FieldSet fields = ~FieldSet(0)) {
     if (ghostSource_.empty() || (fields & allocated_ & ~kListFields) == 0) return;
 #pragma omp parallel if (ghostSource_.size() >= kMinParallelSize)
     refreshGhostsInTeam(fields);
   }
+
+  // The halo particles only (collective; nothing without a remote refresh).
+  void refreshRemoteGhosts(FieldSet fields = ~FieldSet(0)) {
+    if (remoteRefresh_ && (fields & allocated_ & ~kListFields) != 0) remoteRefresh_(remoteContext_, *this, fields);
+  }
+
+  // The decomposition's refresh of the halo particles' fields (nullptr: none).
+  using RemoteRefresh = void (*)(void* context, Particles& P, FieldSet fields);
+  void setRemoteRefresh(RemoteRefresh refresh, void* context) {
+    remoteRefresh_ = refresh;
+    remoteContext_ = context;
+  }
+  bool hasRemoteRefresh() const { return remoteRefresh_ != nullptr; }
 
   // The same, called by every thread of a parallel region (the work is
   // shared, with a barrier at the end); outside one it runs serially.
@@ -309,7 +334,7 @@ struct Particles : FieldArrays<D> {
     }
     ghostSource_.swap(sourceShadow_);
     ghostShift_.swap(shiftShadow_);
-    refreshGhosts();
+    refreshLocalGhosts();
   }
 
   // Every array of the particles, the scratch arrays included [bytes].
@@ -404,6 +429,8 @@ struct Particles : FieldArrays<D> {
   FieldSet allocated_ = 0;
   FieldSet permuted_ = 0;
   Scratch scratch_;
+  RemoteRefresh remoteRefresh_ = nullptr;
+  void* remoteContext_ = nullptr;
 };
 
 }  // namespace sph

@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -52,6 +53,13 @@ class PeriodicGhosts {
   const PeriodicBox<D>& box() const { return box_; }
   Real layer() const { return layer_; }
 
+  // Wrap the owned particles into the box (along its periodic axes).
+  void wrap(Particles<D>& P) const {
+    const std::size_t n = P.size();
+#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
+    for (std::size_t i = 0; i < n; ++i) box_.wrap(P.x[i]);
+  }
+
   // Drop the old ghosts, wrap the owned particles into the box and append
   // the ghosts of their current positions. byId: the ghosts of fluid, and
   // those of walls, in the order of their sources' ids (each source's
@@ -62,8 +70,7 @@ class PeriodicGhosts {
   void make(Particles<D>& P, bool byId = false) {
     P.clearGhosts();
     const std::size_t n = P.size(), nFluid = P.fluidCount();
-#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-    for (std::size_t i = 0; i < n; ++i) box_.wrap(P.x[i]);
+    wrap(P);
     source_.clear();
     shift_.clear();
     std::size_t fluidGhosts = 0;
@@ -140,13 +147,20 @@ class PeriodicGhosts {
 // field follows its particle, rates and derived fields too
 // (Particles::permute()), and the ghosts are made in the order of ids.
 // A cell walk (neighbour_list.hpp) keeps the positions of the build, the
-// ghosts' included, in xList (allocated by the scene).
-template <int D>
+// ghosts' included, in xList (allocated by the scene). halos (a domain
+// decomposition's, mpi/domain_decomposition.hpp; nullptr: one rank): the
+// other ranks' particles near this rank's cells, appended after the
+// periodic ghosts, their send lists following the sort.
+template <int D, class Halos = void>
 void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours, Real radius,
-                PeriodicGhosts<D>* ghosts = nullptr, bool carryAll = false) {
+                PeriodicGhosts<D>* ghosts = nullptr, bool carryAll = false, Halos* halos = nullptr) {
   if (ghosts) ghosts->make(P, carryAll);
+  if constexpr (!std::is_void_v<Halos>)
+    if (halos) halos->makeHalos(P, radius);
   grid.build(P.x, P.fluidCount(), P.size(), P.ghostFluidEnd());
   P.permute(grid.order(), carryAll);
+  if constexpr (!std::is_void_v<Halos>)
+    if (halos) halos->followPermutation(grid.order(), P.size());
   if (!neighbours.cellWalk()) {
     neighbours.build(grid, P.x, radius, P.fluidCount(), P.size());
     return;

@@ -48,7 +48,9 @@ struct LeapFrog {
   template <class Evaluate, class Constrain, class DensityRate>
   void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain,
                DensityRate&& densityRate) const {
-    const std::size_t n = P.size(), nFluid = P.fluidCount();
+    // (Read again after every evaluation: on several MPI ranks a rebuild of
+    // the neighbour list migrates particles, and the counts change.)
+    std::size_t n = P.size(), nFluid = P.fluidCount();
     if (P.drho.empty()) {
 #pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
       for (std::size_t i = 0; i < nFluid; ++i) {
@@ -66,6 +68,7 @@ struct LeapFrog {
         P.x[i] += (dt / 2) * P.driftVelocity(i, P.vHalf[i]);
       }
       densityRate();
+      n = P.size(), nFluid = P.fluidCount();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
       for (std::size_t i = 0; i < n; ++i) {
         P.rho[i] += dt * P.drho[i];

@@ -28,7 +28,9 @@ struct RungeKutta4 {
 
   template <class Evaluate, class Constrain, class DensityRate>
   void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain, DensityRate&&) const {
-    const std::size_t n = P.size(), nFluid = P.fluidCount();
+    // (Read again after every evaluation: on several MPI ranks a rebuild of
+    // the neighbour list migrates particles, and the counts change.)
+    std::size_t n = P.size(), nFluid = P.fluidCount();
     const bool density = !P.drho.empty();
     auto drift = [&](std::size_t i) { return P.driftVelocity(i, P.v[i]); };
     // k1 from the current state; then stages at dt/2, dt/2, dt.
@@ -56,6 +58,7 @@ struct RungeKutta4 {
         P.v[i] = P.v0[i] + stage[s] * kv;
       }
       evaluate();
+      n = P.size(), nFluid = P.fluidCount();
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
       for (std::size_t i = 0; i < n; ++i) {
         if (density) P.drhoSum[i] += weight[s] * P.drho[i];

@@ -26,12 +26,15 @@ struct SymplecticEuler {
   template <class Evaluate, class Constrain, class DensityRate>
   void advance(Particles<D>& P, Real dt, Evaluate&& evaluate, Constrain&& constrain,
                DensityRate&& densityRate) const {
-    const std::size_t n = P.size(), nFluid = P.fluidCount();
+    // (Read again after every evaluation: on several MPI ranks a rebuild of
+    // the neighbour list migrates particles, and the counts change.)
+    std::size_t n = P.size(), nFluid = P.fluidCount();
     const bool density = !P.drho.empty();
     if (density) {
 #pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
       for (std::size_t i = 0; i < nFluid; ++i) P.v[i] += dt * P.a[i];
       densityRate();
+      n = P.size(), nFluid = P.fluidCount();
     }
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) {

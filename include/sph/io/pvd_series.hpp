@@ -30,7 +30,9 @@ class PvdSeries {
 
   // Append a dataset (file name relative to the .pvd) and rewrite the file.
   // `step` is written as an extra attribute; ParaView's PVD reader ignores it.
-  void add(Real time, long step, const std::string& relativeFile);
+  // (write = false: the entry only, the file left to the process that writes
+  // it: MPI rank 0 of a run on several ranks.)
+  void add(Real time, long step, const std::string& relativeFile, bool write = true);
 
   const std::string& path() const { return path_; }
   const std::vector<Entry>& entries() const { return entries_; }
