@@ -337,17 +337,39 @@ int missingSubcommand(int argc, char** argv) {
               "sph run CASE_FILE [--output DIR] [--KEY VALUE ...] ('sph --help' lists the keys)");
 }
 
+// A stream buffer that drops what it is given (the output of ranks > 0).
+class NullBuffer : public std::streambuf {
+ protected:
+  int overflow(int c) override { return traits_type::not_eof(c); }
+  std::streamsize xsputn(const char*, std::streamsize n) override { return n; }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  // MPI only when a launcher started sph (mpi/session.hpp); a run on several
-  // ranks is not wired in yet (issue 20: the decomposition exists,
-  // docs/developer/mpi.md), so it is refused rather than run R times over.
+  // MPI only when a launcher started sph (mpi/session.hpp). `sph run` runs on
+  // every rank (docs/developer/mpi.md); the other subcommands run on one.
+  // Ranks other than 0 print nothing through std::cout and std::cerr (every
+  // rank reaches the same messages); a failure of one rank alone is printed
+  // with fprintf(stderr) by the code that finds it.
   sph::mpi::Session mpi(argc, argv);
-  if (mpi.size() > 1)
-    return mpi.rank() == 0 ? fail("started on " + std::to_string(mpi.size()) +
-                                  " MPI ranks: sph runs on one rank so far (mpirun -n 1, or no mpirun)")
-                           : sph::kBadInput;
+  NullBuffer silent;
+  std::streambuf* const coutBuffer = std::cout.rdbuf();
+  std::streambuf* const cerrBuffer = std::cerr.rdbuf();
+  if (mpi.rank() > 0) {
+    std::cout.rdbuf(&silent);
+    std::cerr.rdbuf(&silent);
+  }
+  struct Restore {  // before the buffer goes
+    std::streambuf *out, *err;
+    ~Restore() {
+      std::cout.rdbuf(out);
+      std::cerr.rdbuf(err);
+    }
+  } restore{coutBuffer, cerrBuffer};
+  if (mpi.size() > 1 && !(argc >= 2 && std::string(argv[1]) == "run"))
+    return fail(std::string("started on ") + std::to_string(mpi.size()) + " MPI ranks: only 'sph run' runs on " +
+                "several; start 'sph " + (argc >= 2 ? argv[1] : "") + "' without mpirun (or with mpirun -n 1)");
   if (argc >= 2 && std::string(argv[1]) == "run") return runCommand(argc - 1, argv + 1);
   if (argc >= 2 && std::string(argv[1]) == "study") return studyCommand(argc - 1, argv + 1);
   if (argc >= 2 && std::string(argv[1]) == "check") return checkCommand(argc - 1, argv + 1);

@@ -8,6 +8,7 @@
 #include "sph/io/catalyst.hpp"
 #include "sph/io/run_output.hpp"
 #include "sph/model_registry.hpp"
+#include "sph/mpi/collectives.hpp"
 #include "sph/run_driver.hpp"
 #include "sph/run_report.hpp"
 #include "sph/run_start.hpp"
@@ -30,6 +31,24 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   const ResolvedCase& c = start->c;
   const bool resuming = start->resuming;
   InitialState<D>& init = start->init;
+  // Several MPI ranks (docs/developer/mpi.md): every rank read the same case
+  // and built the same particles; the scene keeps each rank's share. Only
+  // rank 0 writes (but the snapshot pieces) and prints (main gives the other
+  // ranks silent streams). What is not wired for ranks yet is refused here,
+  // on every rank alike, before anything is written.
+  const mpi::Communicator& comm = mpi::world();
+  if (comm.size > 1) {
+    std::string refused;
+    if (resuming) refused = "--resume";
+    else if (!c.catalyst.empty()) refused = "--catalyst";
+    else if (c.starMass > 0) refused = "star_mass (the toy star)";
+    else if (surfaceTensionCurvature(c)) refused = "surface_tension = \"" + c.surfaceTension + "\"";
+    if (!refused.empty()) {
+      err << "sph: error: " << refused << " runs on one MPI rank so far (started on " << comm.size
+          << " ranks; run it without mpirun, or with mpirun -n 1)\n";
+      return kBadInput;
+    }
+  }
 
   const std::size_t n = init.particles.size();
   // Particles the reflecting walls will move on the first step (a note).
@@ -50,6 +69,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   const long resumeStep = init.startStep;
   const bool massesGiven = init.massesGiven;
   Scene<D> scene = makeScene<D>(c, std::move(init), startTime);
+  scene.setDecomposition(comm);
   try {
     const auto failure = resuming ? scene.resume(resumeStep, resumeTime) : scene.initialise(!massesGiven);
     if (failure) {
@@ -76,7 +96,9 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   }
 
   // Everything that can be checked has been: now, and only now, write.
-  if (!makeRunFolder(c.output, c.overwrite, err)) return kBadInput;
+  int folderMade = comm.rank == 0 ? makeRunFolder(c.output, c.overwrite, err) : 0;
+  if (comm.size > 1) MPI_Bcast(&folderMade, 1, MPI_INT, 0, comm.comm);
+  if (!folderMade) return kBadInput;
   if (!c.particleFile.empty() && !resuming && (!c.blockMin.empty() || !c.discCenter.empty() || !c.points.empty()))
     err << "sph: note: particles come from particle_file " << c.particleFile
         << "; the case's block, disc and points generators are not used\n";

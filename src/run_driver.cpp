@@ -67,7 +67,10 @@ class RegimeWatch {
  public:
   RegimeWatch(const CaseConfig& c, const Scene<D>& scene)
       : soundSpeed_(scene.model().regimeSoundSpeed()), densityRef_(scene.model().regimeDensity()),
-        regime_(soundSpeed_, c.spacing, scene.particles().fluidCount()), on_(c.regimeCheck != "off") {
+        regime_(soundSpeed_, c.spacing,
+                static_cast<std::size_t>(mpi::allSum(scene.communicator(),
+                                                     static_cast<std::int64_t>(scene.particles().fluidCount())))),
+        on_(c.regimeCheck != "off") {
     if (on_) regime_.start(measure(scene, c));
   }
 
@@ -94,7 +97,8 @@ class RegimeWatch {
 
  private:
   RegimeState measure(const Scene<D>& scene, const CaseConfig& c) const {
-    return measureRegime(scene.particles(), scene.neighbours(), soundSpeed_, c.spacing, densityRef_, scene.support());
+    return measureRegime(scene.particles(), scene.neighbours(), soundSpeed_, c.spacing, densityRef_, scene.support(),
+                         scene.communicator());
   }
 
   Real soundSpeed_, densityRef_;
@@ -167,7 +171,7 @@ RunTotals driveRun(const ResolvedCase& c, Scene<D>& scene, RunOutput<D>& output,
   try {
     // run.json first: a folder holding any file of this run holds its record,
     // so that a run killed at any moment can be resumed or overwritten.
-    writeFileAtomically((dir / "run.case").string(), resolvedCaseText(c));
+    if (scene.communicator().rank == 0) writeFileAtomically((dir / "run.case").string(), resolvedCaseText(c));
     saveRecord();
     if (!resuming) output.write(scene);
     saveRecord();
@@ -195,8 +199,9 @@ RunTotals driveRun(const ResolvedCase& c, Scene<D>& scene, RunOutput<D>& output,
       }
       // An adaptive dt that no longer lets the run end stops it (below).
       // The last step of the run: the end reached or a stop asked for, read
-      // once, so the snapshot, the check and Catalyst agree on it.
-      const bool last = finished() || stopSignal() != 0;
+      // once, so the snapshot, the check and Catalyst agree on it (and every
+      // MPI rank: a signal to one rank stops them all after this step).
+      const bool last = finished() || mpi::allMax(scene.communicator(), stopSignal()) != 0;
       lastDone = last;
       const bool collapsed =
           adaptive && !finished() && (c.endTime - scene.time()) / scene.lastTimeStep().dt > kMaxSteps;
@@ -246,6 +251,15 @@ RunTotals driveRun(const ResolvedCase& c, Scene<D>& scene, RunOutput<D>& output,
       }
     }
   } catch (const std::runtime_error& e) {
+    // On several MPI ranks a file one rank could not write stops every rank:
+    // the others wait in a collective call, so the cause is printed here and
+    // the job aborted (mpirun ends every rank, the exit status non-zero).
+    const mpi::Communicator& comm = scene.communicator();
+    if (comm.size > 1) {
+      std::fprintf(stderr, "sph: error: MPI rank %d: %s\n", comm.rank, e.what());
+      std::fflush(stderr);
+      MPI_Abort(comm.comm, kWriteFailed);
+    }
     if (showLiveLine) err << "\n";
     err << "sph: error: " << e.what() << "\n";
     record.status = "write_failed";
@@ -258,7 +272,7 @@ RunTotals driveRun(const ResolvedCase& c, Scene<D>& scene, RunOutput<D>& output,
     return totals;
   }
   if (showLiveLine) err << "\r" << std::string(100, ' ') << "\r" << std::flush;
-  totals.signal = stopSignal();
+  totals.signal = mpi::allMax(scene.communicator(), stopSignal());
   if (totals.signal != 0 && totals.status == kSuccess) {
     totals.status = 128 + totals.signal;
     record.status = "interrupted";

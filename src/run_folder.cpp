@@ -57,6 +57,7 @@ void writeRunRecord(const std::filesystem::path& dir, const RunRecord& r) {
   j["given_keys"] = r.given;
   json seconds = json::object();
   for (const auto& [count, s] : r.threadSeconds) seconds[std::to_string(count)] = s;
+  j["ranks"] = r.ranks;
   j["threads"] = {{"asked", r.threadMode}, {"used", r.threadsUsed}, {"stepping_seconds", seconds}};
   j["started"] = r.started;
   j["ended"] = r.ended;
@@ -103,6 +104,7 @@ RunRecord readRunRecord(const std::filesystem::path& dir) {
     r.model = j.at("model").get<std::string>();
     for (const auto& [k, v] : j.at("case").items()) r.caseValues[k] = v.is_null() ? "" : v.dump();
     r.given = j.at("given_keys").get<std::vector<std::string>>();
+    r.ranks = j.value("ranks", 1);  // (absent in runs written before MPI)
     r.threadMode = j.at("threads").at("asked").get<std::string>();
     r.threadsUsed = j.at("threads").at("used").get<std::vector<int>>();
     for (const auto& [count, s] : j.at("threads").at("stepping_seconds").items())

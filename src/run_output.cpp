@@ -5,6 +5,7 @@
 #include "sph/io/atomic_file.hpp"
 #include "sph/io/number_format.hpp"
 #include "sph/model_registry.hpp"
+#include "sph/mpi/parallel_snapshot.hpp"
 #include "sph/scene.hpp"
 #include "sph/toy_star.hpp"
 
@@ -57,7 +58,7 @@ template <int D>
 RunOutput<D>::RunOutput(const std::filesystem::path& dir, const std::string& name, SnapshotInfo info,
                         RunRecord& record, bool adaptive, ProbeFiles<D> probes)
     : dir_(dir), name_(name), info_(info), series_((dir / (name + ".pvd")).string()), record_(record),
-      adaptive_(adaptive), probes_(std::move(probes)) {
+      adaptive_(adaptive), probes_(std::move(probes)), comm_(mpi::world()) {
   energy_ = "time,kinetic,potential,total\n";
   if (adaptive_) dtLog_ = "step,time,dt,criterion\n";
 }
@@ -82,11 +83,16 @@ void RunOutput<D>::resumeAfter(long step, Real time) {
 template <int D>
 void RunOutput<D>::write(const Scene<D>& scene) {
   char file[64];
-  std::snprintf(file, sizeof file, "_%05ld.vtp", count_);
+  std::snprintf(file, sizeof file, comm_.size > 1 ? "_%05ld.pvtp" : "_%05ld.vtp", count_);
   const std::string vtp = name_ + file;
   info_.time = scene.time();
   info_.step = scene.stepIndex();
-  writeVtp<D>((dir_ / vtp).string(), scene.particles(), info_);
+  if (comm_.size > 1) {
+    mpi::writeParallelSnapshot<D>((dir_ / vtp).string(), scene.particles(), info_, comm_);
+    for (int r = 0; r < comm_.size; ++r) record_.addFile(pvtpPieceName(vtp, r));
+  } else {
+    writeVtp<D>((dir_ / vtp).string(), scene.particles(), info_);
+  }
   record_.addFile(vtp);
   // The logs first, the series last: a run killed in between leaves rows
   // past the series' last snapshot, which a resume drops (resumeAfter).
@@ -99,7 +105,7 @@ void RunOutput<D>::write(const Scene<D>& scene) {
   if (count_ == 0 && lastStep_ < 0) sampleProbes(scene);
   for (const auto& f : probes_.files()) writeLog(f.name, *f.text);
   flushTimeSteps();
-  series_.add(scene.time(), scene.stepIndex(), vtp);
+  series_.add(scene.time(), scene.stepIndex(), vtp, comm_.rank == 0);
   record_.addFile(name_ + ".pvd");
   ++count_;
   lastStep_ = scene.stepIndex();
@@ -130,6 +136,11 @@ void RunOutput<D>::flushTimeSteps() {
 
 template <int D>
 void RunOutput<D>::writeLog(const std::string& file, std::string& text) {
+  record_.addFile(file);
+  if (comm_.rank != 0) {  // rank 0 writes the logs
+    text.clear();
+    return;
+  }
   const std::string path = (dir_ / file).string();
   if (!onDisk_.count(file)) {
     writeFileAtomically(path, text);
@@ -139,7 +150,6 @@ void RunOutput<D>::writeLog(const std::string& file, std::string& text) {
     appendToFile(path, text);
     text.clear();
   }
-  record_.addFile(file);
 }
 
 template <int D>

@@ -130,15 +130,24 @@ void RunReport::save(Real time, long step, long wallGuardActions, const ThreadTu
       record.threadsUsed.push_back(t);
   for (const auto& [t, seconds] : tuner.secondsWith()) record.threadSeconds[t] += seconds;
   // CPU time and peak memory of this process (a resume adds its own).
+  // On several MPI ranks: every rank's CPU time and peak memory, summed
+  // (collective: every rank saves at the same points; rank 0 writes).
   rusage usage{};
+  double used[2] = {0, 0};
   if (::getrusage(RUSAGE_SELF, &usage) == 0) {
     auto seconds = [](const timeval& tv) { return static_cast<double>(tv.tv_sec) + 1e-6 * static_cast<double>(tv.tv_usec); };
-    record.cpuSeconds = previous.cpuSeconds + seconds(usage.ru_utime) + seconds(usage.ru_stime);
-    record.peakMemoryBytes = std::max(previous.peakMemoryBytes, 1024.0 * static_cast<double>(usage.ru_maxrss));
+    used[0] = seconds(usage.ru_utime) + seconds(usage.ru_stime);
+    used[1] = 1024.0 * static_cast<double>(usage.ru_maxrss);
   }
+  const mpi::Communicator& comm = mpi::world();
+  used[0] = mpi::allSum(comm, used[0]);
+  used[1] = mpi::allSum(comm, used[1]);
+  record.ranks = comm.size;
+  record.cpuSeconds = previous.cpuSeconds + used[0];
+  record.peakMemoryBytes = std::max(previous.peakMemoryBytes, used[1]);
   record.addFile("run.json");
   record.addFile("run.case");
-  writeRunRecord(dir_, record);
+  if (comm.rank == 0) writeRunRecord(dir_, record);
 }
 
 template <int D>

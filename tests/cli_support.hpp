@@ -32,14 +32,8 @@ struct Result {
   std::string output;  // stdout and stderr together
 };
 
-// Run the real sph executable with the given arguments (shell-quoted here).
-inline Result runSph(const std::vector<std::string>& args) {
-  // SPH_TEST_EXECUTABLE runs the suites against another build of sph (the
-  // seed_bitwise digests were recorded that way from the program before the
-  // core was reshaped).
-  const char* other = std::getenv("SPH_TEST_EXECUTABLE");
-  std::string cmd = std::string("'") + (other ? other : SPH_EXECUTABLE) + "'";
-  for (const auto& a : args) cmd += " '" + a + "'";
+// Run a shell command line; its stdout and stderr together.
+inline Result runCommandLine(std::string cmd) {
   cmd += " 2>&1";
   Result r{-1, ""};
   FILE* pipe = ::popen(cmd.c_str(), "r");
@@ -49,6 +43,17 @@ inline Result runSph(const std::vector<std::string>& args) {
   const int status = ::pclose(pipe);
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+// Run the real sph executable with the given arguments (shell-quoted here).
+inline Result runSph(const std::vector<std::string>& args) {
+  // SPH_TEST_EXECUTABLE runs the suites against another build of sph (the
+  // seed_bitwise digests were recorded that way from the program before the
+  // core was reshaped).
+  const char* other = std::getenv("SPH_TEST_EXECUTABLE");
+  std::string cmd = std::string("'") + (other ? other : SPH_EXECUTABLE) + "'";
+  for (const auto& a : args) cmd += " '" + a + "'";
+  return runCommandLine(cmd);
 }
 
 // A shipped case file, cases/NAME.case.

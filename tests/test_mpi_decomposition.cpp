@@ -295,8 +295,9 @@ void checkOneRank(const Global<D>& g) {
 
 // Periodic ghosts made before the halos stay, with their sources and
 // shifts, through makeHalos, a sort and a refresh; halos and ghosts keep
-// the kinds' ranges. (Periodic images of halos across a rank boundary are
-// not made yet: docs/developer/mpi.md.)
+// the kinds' ranges. A periodic ghost near another rank's cells is sent
+// there as a halo: a halo is its id's particle, or its image one box
+// length away along x.
 void checkPeriodicGhostsKept(const Global<2>& g) {
   const Communicator c = world();
   DomainDecomposition<2> dd(c, g.radius);
@@ -309,13 +310,23 @@ void checkPeriodicGhostsKept(const Global<2>& g) {
   dd.makeHalos(P, g.radius);
   const auto check = [&](const char* when, bool refreshed) {
     BOOST_TEST_CONTEXT(when) {
-      std::size_t localNow = 0, wrongGhost = 0, wrongRange = 0, wrongHalo = 0;
+      std::size_t localNow = 0, wrongGhost = 0, wrongRange = 0, wrongHalo = 0, images = 0;
       for (std::size_t k = 0; k < P.ghostSource().size(); ++k) {
         const std::size_t i = P.size() + k;
         const std::uint32_t s = P.ghostSource()[k];
         wrongRange += (i < P.ghostFluidEnd()) != (P.kind[i] == sph::kFluid);
         if (s & Particles<2>::kRemoteSource) {
+          const auto own = static_cast<std::size_t>(P.id[i]);
+          const bool image = P.id[i] >= 0 && own < g.size() && P.x[i] != g.x[own];
+          if (image) {
+            const bool shifted = P.x[i] == Vec<2>(g.x[own] + Vec<2>(1, 0)) || P.x[i] == Vec<2>(g.x[own] - Vec<2>(1, 0));
+            wrongHalo += !shifted;
+            ++images;
+          }
+          const Vec<2> x = P.x[i];
+          if (image) P.x[i] = g.x[own];
           wrongHalo += !fieldsOfItsId(g, P, i) || (refreshed && P.p[i] != 1000 + static_cast<Real>(P.id[i]));
+          P.x[i] = x;
           continue;
         }
         ++localNow;
@@ -327,6 +338,7 @@ void checkPeriodicGhostsKept(const Global<2>& g) {
       BOOST_CHECK_EQUAL(wrongGhost, 0u);
       BOOST_CHECK_EQUAL(wrongRange, 0u);
       BOOST_CHECK_EQUAL(wrongHalo, 0u);
+      if (c.size > 1) BOOST_CHECK_GT(sumOver(c, static_cast<int>(images)), 0);  // images cross ranks
     }
   };
   check("after makeHalos", false);

@@ -30,6 +30,8 @@
 // surface it does nothing.
 #pragma once
 
+#include "sph/mpi/collectives.hpp"
+
 #include "sph/kernels/kernels.hpp"
 #include "sph/neighbour_list.hpp"
 #include "sph/pair_loop.hpp"
@@ -57,11 +59,21 @@ class ParticleShifting {
             const Real h = W.h();
             const Real invWdx = 1 / W.W(spacing_);
             const Real scale = coefficient_ * h * dt;
+            // U over every MPI rank's fluid: reduced between two regions
+            // (a collective call), else in the region's first loop.
             Real v2max = 0;
+            const bool ranks = comm_.size > 1;
+            if (ranks) {
+#pragma omp parallel for schedule(static) reduction(max : v2max)
+              for (std::size_t i = 0; i < n; ++i) v2max = std::max(v2max, P.v[i].squaredNorm());
+              v2max = mpi::allMax(comm_, v2max);
+            }
 #pragma omp parallel
             {
+              if (!ranks) {
 #pragma omp for schedule(static) reduction(max : v2max)
-              for (std::size_t i = 0; i < n; ++i) v2max = std::max(v2max, P.v[i].squaredNorm());
+                for (std::size_t i = 0; i < n; ++i) v2max = std::max(v2max, P.v[i].squaredNorm());
+              }
               const Real speed = std::sqrt(v2max);
 #pragma omp for schedule(static)
               for (std::size_t i = 0; i < n; ++i) {
@@ -91,10 +103,13 @@ class ParticleShifting {
   }
 
   Real coefficient() const { return coefficient_; }
+  // The ranks whose fluid U is the largest speed of (scene.hpp).
+  void setCommunicator(const mpi::Communicator& comm) { comm_ = comm; }
 
  private:
   Kernel<D> kernel_;
   Real coefficient_, spacing_, rho0_;
+  mpi::Communicator comm_;
   mutable std::vector<Vec<D>> shift_;  // scratch, reused: no allocation after the first step
 };
 

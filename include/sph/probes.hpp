@@ -49,6 +49,7 @@
 #pragma once
 
 #include "sph/kernels/kernels.hpp"
+#include "sph/mpi/collectives.hpp"
 #include "sph/particles.hpp"
 #include "sph/periodic_box.hpp"
 
@@ -71,7 +72,7 @@ struct ProbeValues {
 
 template <int D>
 ProbeValues<D> interpolateAt(const Particles<D>& P, const Kernel<D>& kernel, const Vec<D>& x, Real dryWeight,
-                             const PeriodicBox<D>& box = {}, bool shepard = true) {
+                             const PeriodicBox<D>& box = {}, bool shepard = true, const mpi::Communicator& comm = {}) {
   return std::visit(
       [&](const auto& W) {
         ProbeValues<D> out;
@@ -86,6 +87,13 @@ ProbeValues<D> interpolateAt(const Particles<D>& P, const Kernel<D>& kernel, con
           out.pressure += w * P.p[j];
           out.density += w * P.rho[j];
           out.velocity += w * P.v[j];
+        }
+        if (comm.size > 1) {  // every rank's fluid: the sums reduced, then divided
+          double sums[3 + D] = {weight, out.pressure, out.density};
+          for (int d = 0; d < D; ++d) sums[3 + d] = out.velocity[d];
+          mpi::allSum(comm, sums, 3 + D);
+          weight = sums[0], out.pressure = sums[1], out.density = sums[2];
+          for (int d = 0; d < D; ++d) out.velocity[d] = sums[3 + d];
         }
         out.wet = weight > dryWeight && weight > 0;
         if (out.wet && shepard) {
@@ -163,8 +171,8 @@ int nearestFaceAxis(const Vec<D>& x, const std::vector<std::pair<Vec<D>, Vec<D>>
 template <int D>
 ProbeValues<D> sensorAt(const Particles<D>& P, const Kernel<D>& kernel, const Vec<D>& centre,
                         const std::vector<Vec<D>>& points, Real radius, Real dryWeight,
-                        const PeriodicBox<D>& box = {}, bool shepard = true) {
-  ProbeValues<D> out = interpolateAt(P, kernel, centre, dryWeight, box, shepard);
+                        const PeriodicBox<D>& box = {}, bool shepard = true, const mpi::Communicator& comm = {}) {
+  ProbeValues<D> out = interpolateAt(P, kernel, centre, dryWeight, box, shepard, comm);
   if (points.size() <= 1) return out;
   const Real support = std::visit([](const auto& W) { return W.support(); }, kernel);
   const Real reach = support + radius;
@@ -183,7 +191,7 @@ ProbeValues<D> sensorAt(const Particles<D>& P, const Kernel<D>& kernel, const Ve
   Real sum = 0;
   bool wet = false;
   for (const Vec<D>& x : points) {
-    const ProbeValues<D> v = interpolateAt(near, kernel, x, dryWeight, box, shepard);
+    const ProbeValues<D> v = interpolateAt(near, kernel, x, dryWeight, box, shepard, comm);
     if (v.wet) sum += v.pressure, wet = true;
   }
   if (!out.wet && wet) {  // the centre is dry, part of the disc is wet
@@ -198,20 +206,22 @@ ProbeValues<D> sensorAt(const Particles<D>& P, const Kernel<D>& kernel, const Ve
 // Height of the water above the gauge at horizontal position `at` (D - 1
 // coordinates), measured from 0 along the vertical axis D - 1.
 template <int D>
-Real waterHeightAt(const Particles<D>& P, const Real* at, Real dx) {
+Real waterHeightAt(const Particles<D>& P, const Real* at, Real dx, const mpi::Communicator& comm = {}) {
   Real top = -std::numeric_limits<Real>::infinity();
   for (std::size_t j = 0; j < P.fluidCount(); ++j) {
     bool inside = true;
     for (int d = 0; d + 1 < D; ++d) inside &= std::abs(P.x[j][d] - at[d]) < dx;
     if (inside && P.x[j][D - 1] > top) top = P.x[j][D - 1];
   }
+  top = mpi::allMax(comm, top);
   return std::isfinite(top) ? top + dx / 2 : 0;
 }
 
 template <int D>
-Real frontPosition(const Particles<D>& P, Real dx) {
+Real frontPosition(const Particles<D>& P, Real dx, const mpi::Communicator& comm = {}) {
   Real front = -std::numeric_limits<Real>::infinity();
   for (std::size_t j = 0; j < P.fluidCount(); ++j) front = std::max(front, P.x[j][0]);
+  front = mpi::allMax(comm, front);
   return std::isfinite(front) ? front + dx / 2 : std::numeric_limits<Real>::quiet_NaN();
 }
 

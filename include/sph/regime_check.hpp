@@ -27,6 +27,8 @@
 // default), about 1/10 of a density pass per step.
 #pragma once
 
+#include "sph/mpi/collectives.hpp"
+
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
 
@@ -52,7 +54,8 @@ constexpr Real kDensityWindow = 0.1;
 
 template <int D>
 RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbours, Real cRef, Real dx,
-                          Real rho0 = 0, Real support = std::numeric_limits<Real>::infinity()) {
+                          Real rho0 = 0, Real support = std::numeric_limits<Real>::infinity(),
+                          const mpi::Communicator& comm = {}) {
   // (A list with a Verlet skin holds pairs beyond the support: not counted.)
   const Real support2 = support * support;
   const std::size_t nFluid = P.fluidCount();
@@ -76,12 +79,22 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
     isolated += count == 0;
     paired += close;
   }
+  // Over every rank's fluid (no MPI call on one rank).
+  double highest[2] = {v2, rhoMax};
+  mpi::allMax(comm, highest, 2);
+  v2 = highest[0], rhoMax = highest[1];
+  std::int64_t counts[4] = {static_cast<std::int64_t>(nFluid), static_cast<std::int64_t>(isolated),
+                            static_cast<std::int64_t>(paired), static_cast<std::int64_t>(pairs)};
+  mpi::allSum(comm, counts, 4);
+  const auto fluidAll = static_cast<std::size_t>(counts[0]);
+  isolated = static_cast<std::size_t>(counts[1]), paired = static_cast<std::size_t>(counts[2]),
+  pairs = static_cast<std::size_t>(counts[3]);
   RegimeState s;
   s.maxSpeed = std::sqrt(v2);
   s.mach = cRef > 0 ? s.maxSpeed / cRef : 0;
   s.densityMax = rho0 > 0 ? rhoMax / rho0 : 0;
-  if (nFluid > 0) {
-    const Real n = static_cast<Real>(nFluid);
+  if (fluidAll > 0) {
+    const Real n = static_cast<Real>(fluidAll);
     s.isolatedFraction = static_cast<Real>(isolated) / n;
     s.meanNeighbours = static_cast<Real>(pairs) / n;
     s.pairedFraction = static_cast<Real>(paired) / n;

@@ -42,6 +42,8 @@
 #include "sph/hash_grid.hpp"
 #include "sph/integrators/integrators.hpp"
 #include "sph/mass_scaling.hpp"
+#include "sph/mpi/collectives.hpp"
+#include "sph/mpi/domain_decomposition.hpp"
 #include "sph/models/seed_wcsph.hpp"
 #include "sph/models/wcsph.hpp"
 #include "sph/neighbour_list.hpp"
@@ -55,6 +57,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -128,6 +131,30 @@ class Scene {
     neighbours_.setCellWalk(on);
     if (on) P_.allocate(P_.allocated() | fieldBit(kFieldXList));
   }
+  // Run on the ranks of `comm` (R > 1; with one rank nothing changes): keep
+  // this rank's share of the particles (every rank built the same), and
+  // from the first sort on, own the particles of this rank's cells
+  // (mpi/domain_decomposition.hpp: migrated at every sort, rebalanced every
+  // kRebalanceEvery sorts) with the halo of other ranks' particles within
+  // the list's radius, refreshed wherever the ghosts are. The reductions of
+  // a step (time step, state check, skin, energy, counts) span the ranks.
+  // Call before initialise().
+  void setDecomposition(const mpi::Communicator& comm) {
+    if (comm.size == 1) return;
+    comm_ = comm;
+    decomposition_ = std::make_unique<mpi::DomainDecomposition<D>>(comm, listRadius_);
+    decomposition_->keepShare(P_);
+    if (shifting_) shifting_->shifting.setCommunicator(comm);
+    P_.setRemoteRefresh(&mpi::DomainDecomposition<D>::refreshRemote, decomposition_.get());
+  }
+  static constexpr long kRebalanceEvery = 20;
+  const mpi::Communicator& communicator() const { return comm_; }
+  // Particles of all ranks, fluid and walls (this rank's: particles().size()).
+  std::size_t globalCount() const {
+    return static_cast<std::size_t>(mpi::allSum(comm_, static_cast<std::int64_t>(P_.size())));
+  }
+  // Halo particles on this rank (0 on one rank).
+  std::size_t haloCount() const { return decomposition_ ? decomposition_->haloCount() : 0; }
   // Make the neighbour list fit the particles' current positions: with no
   // skin, sort and build it; with one, keep it if it still holds (the
   // ghosts refreshed), else rebuild. (Each evaluation calls it.)
@@ -139,14 +166,18 @@ class Scene {
   PeriodicBox<D> periodicBox() const { return ghosts_ ? ghosts_->box() : PeriodicBox<D>{}; }
   // Particle shifting at the start of every step (particle_shifting.hpp;
   // a pass of the scene's, passes/step_start.hpp).
-  void setShifting(ParticleShifting<D> shifting) { shifting_.emplace(ShiftingPass<D>{std::move(shifting)}); }
+  void setShifting(ParticleShifting<D> shifting) {
+    shifting.setCommunicator(comm_);
+    shifting_.emplace(ShiftingPass<D>{std::move(shifting)});
+  }
   // A paddle's prescribed motion, moved at the start of every step, after
   // the shifting (wall_motion.hpp; passes/step_start.hpp).
   void setWallMotion(const SinusoidalWallMotion<D>& motion) { wallMotion_.emplace(WallMotionPass<D>{motion}); }
   const std::optional<ShiftingPass<D>>& shiftingPass() const { return shifting_; }
   const std::optional<WallMotionPass<D>>& wallMotionPass() const { return wallMotion_; }
-  // How often the guard put a fluid particle back (position updates it changed).
-  long wallGuardActions() const { return guardActions_; }
+  // How often the guard put a fluid particle back (position updates it
+  // changed), on all ranks (collective).
+  long wallGuardActions() const { return static_cast<long>(mpi::allSum(comm_, static_cast<std::int64_t>(guardActions_))); }
 
   // Sort, optionally scale the masses to rho0, and evaluate the model at the
   // initial state. Returns a failure if the initial state is not finite.
@@ -180,7 +211,8 @@ class Scene {
   // Mean number of neighbours per particle (j != i inside the support;
   // with a skin the list holds more, which are not counted).
   Real meanNeighbours() const {
-    if (P_.size() == 0) return 0;
+    const auto owned = mpi::allSum(comm_, static_cast<std::int64_t>(P_.size()));
+    if (owned == 0) return 0;
     std::size_t pairs = neighbours_.pairCount();
     if (skin_ > 0) {
       pairs = 0;
@@ -188,12 +220,14 @@ class Scene {
       for (std::size_t i = 0; i < P_.size(); ++i)
         neighbours_.forEach(i, [&](std::uint32_t j) { pairs += (P_.x[i] - P_.x[j]).squaredNorm() < support2; });
     }
-    return static_cast<Real>(pairs) / static_cast<Real>(P_.size());
+    return static_cast<Real>(mpi::allSum(comm_, static_cast<std::int64_t>(pairs))) / static_cast<Real>(owned);
   }
 
-  // Every array of the scene, the ghosts' included [bytes].
+  // Every array of the scene, the ghosts' included [bytes] (all ranks':
+  // collective).
   std::size_t bytesAllocated() const {
-    return P_.bytesAllocated() + grid_.bytesAllocated() + neighbours_.bytesAllocated();
+    return static_cast<std::size_t>(mpi::allSum(
+        comm_, static_cast<std::int64_t>(P_.bytesAllocated() + grid_.bytesAllocated() + neighbours_.bytesAllocated())));
   }
 
  private:
@@ -231,7 +265,11 @@ class Scene {
       for (std::size_t i = 0; i < n; ++i) worst2 = std::max(worst2, Vec<D>(P_.x[i] - P_.xList[i]).squaredNorm());
       P_.refreshGhostsInTeam();
     }
-    return worst2 <= half * half;
+    if (!decomposition_) return worst2 <= half * half;
+    // Every rank rebuilds when one must (the sort migrates: collective).
+    const bool holds = mpi::allMax(comm_, worst2) <= half * half;
+    if (holds) P_.refreshRemoteGhosts();
+    return holds;
   }
 
   void evaluate();
@@ -272,6 +310,23 @@ class Scene {
       v2 = std::max(v2, P_.v[i].squaredNorm());
       a2 = std::max(a2, P_.a[i].squaredNorm());
     }
+    if (decomposition_) {
+      double highest[3] = {v2, a2, rhoMax};
+      mpi::allMax(comm_, highest, 3);
+      v2 = highest[0], a2 = highest[1], rhoMax = highest[2];
+      rhoMin = mpi::allMin(comm_, rhoMin);
+      // The failure of the lowest particle id on any rank, named on every rank.
+      std::optional<StateFailure> mine;
+      if (first < n) mine = check_.describe(P_, first);
+      const auto firstFailure = mpi::firstOfRanks(comm_, mine ? static_cast<std::int64_t>(mine->id) : INT64_MAX);
+      extremes_ = StateExtremes{v2, a2, rhoMin, rhoMax};
+      if (firstFailure.rank < 0) return std::nullopt;
+      StateFailure failure{mine ? mine->index : 0, firstFailure.key,
+                           mpi::broadcast(comm_, mine ? mine->quantity : std::string(), firstFailure.rank),
+                           mpi::broadcast(comm_, mine ? mine->detail : std::string(), firstFailure.rank)};
+      failure.detail += " (on MPI rank " + std::to_string(firstFailure.rank) + ")";
+      return failure;
+    }
     extremes_ = StateExtremes{v2, a2, rhoMin, rhoMax};
     if (first == n) return std::nullopt;
     return check_.describe(P_, first);
@@ -284,6 +339,9 @@ class Scene {
   StateCheck<D> check_;
   TimeStepControl timeStep_;
   std::optional<PeriodicGhosts<D>> ghosts_;
+  mpi::Communicator comm_;  // the ranks of the run ({self, 0, 1}: one)
+  std::unique_ptr<mpi::DomainDecomposition<D>> decomposition_;  // R > 1 only
+  long sortsSinceBalance_ = 0;
   std::optional<ShiftingPass<D>> shifting_;
   std::optional<WallMotionPass<D>> wallMotion_;
   long guardActions_ = 0;
@@ -309,7 +367,7 @@ template <int D>
 std::optional<StateFailure> Scene<D>::initialise(bool scaleMass) {
   sort();
   if (scaleMass) {
-    scaleMassToRestDensity(P_, neighbours_, model_);
+    scaleMassToRestDensity(P_, neighbours_, model_, comm_);
     P_.refreshGhosts();
   }
   model_.evaluate(P_, neighbours_, StepContext{step_, time_, 0});
@@ -392,12 +450,22 @@ Energy Scene<D>::energy() const {
   Energy e;
   for (std::size_t i = 0; i < P_.fluidCount(); ++i) e.kinetic += 0.5 * P_.m[i] * P_.v[i].squaredNorm();
   e.potential = model_.potentialEnergy(P_);
+  if (decomposition_) {
+    e.kinetic = mpi::allSum(comm_, e.kinetic);
+    e.potential = mpi::allSum(comm_, e.potential);
+  }
   return e;
 }
 
 template <int D>
 void Scene<D>::sort() {
-  sortByCell(P_, grid_, neighbours_, listRadius_, ghosts_ ? &*ghosts_ : nullptr, skin_ > 0);
+  if (decomposition_) {
+    // Wrapped first: a particle goes to the owner of its place in the box.
+    if (ghosts_) ghosts_->wrap(P_);
+    if (sortsSinceBalance_++ % kRebalanceEvery == 0) decomposition_->balance(P_);
+    decomposition_->migrate(P_);
+  }
+  sortByCell(P_, grid_, neighbours_, listRadius_, ghosts_ ? &*ghosts_ : nullptr, skin_ > 0, decomposition_.get());
   ++listBuilds_;
   // (A cell walk had sortByCell copy them already, the ghosts' included.)
   if (skin_ > 0 && !neighbours_.cellWalk()) std::copy(P_.x.begin(), P_.x.begin() + static_cast<std::ptrdiff_t>(P_.size()), P_.xList.begin());

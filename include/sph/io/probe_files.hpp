@@ -113,7 +113,8 @@ class ProbeFiles {
     if (!points_.empty()) {
       pointText_ += timeText;
       for (std::size_t k = 0; k < points_.size(); ++k) {
-        const ProbeValues<D> v = sensorAt(P, kernel_, points_[k], discs_[k], radius_, kDryWeight, box_, shepard_);
+        const ProbeValues<D> v =
+            sensorAt(P, kernel_, points_[k], discs_[k], radius_, kDryWeight, box_, shepard_, comm_);
         pointText_ += "," + value(v.wet, v.pressure) + "," + value(v.wet, v.density);
         for (int d = 0; d < D; ++d) pointText_ += "," + value(v.wet, v.velocity[d]);
         if (window_ > 0) pointText_ += "," + number(filtered(k, t, v.wet ? v.pressure : 0));
@@ -123,10 +124,10 @@ class ProbeFiles {
     if (!heights_.empty()) {
       heightText_ += timeText;
       for (std::size_t k = 0; k + (D - 1) <= heights_.size(); k += D - 1)
-        heightText_ += "," + number(waterHeightAt(P, &heights_[k], dx_));
+        heightText_ += "," + number(waterHeightAt(P, &heights_[k], dx_, comm_));
       heightText_ += "\n";
     }
-    if (front_) frontText_ += timeText + "," + number(frontPosition(P, dx_)) + "\n";
+    if (front_) frontText_ += timeText + "," + number(frontPosition(P, dx_, comm_)) + "\n";
   }
 
   // The files' rows not yet written (the writer empties them), and their
@@ -208,6 +209,9 @@ class ProbeFiles {
   std::vector<std::deque<std::pair<Real, Real>>> history_;
   Real next_ = 0;
   std::string pointText_, heightText_, frontText_;
+  // The ranks of the run: each samples its own fluid and the sums and
+  // maxima are reduced (rank 0 writes the files).
+  mpi::Communicator comm_ = mpi::world();
 };
 
 }  // namespace sph

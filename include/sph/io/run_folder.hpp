@@ -37,6 +37,7 @@ struct RunRecord {
   std::string caseFile;
   std::string version, gitCommit;
   int dimension = 2;
+  int ranks = 1;  // MPI ranks of the run (the last process's)
   std::string model;
   // how it ran
   std::string threadMode;              // "auto" or the count asked for

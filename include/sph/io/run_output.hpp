@@ -4,6 +4,8 @@
 // density profile. A resumed run continues the files of the run it resumes.
 #pragma once
 
+#include "sph/mpi/session.hpp"
+
 #include "sph/case_config.hpp"
 #include "sph/io/probe_files.hpp"
 #include "sph/io/pvd_series.hpp"
@@ -60,6 +62,9 @@ class RunOutput {
   std::string energy_, dtLog_;
   // The logs (energy.csv, timestep.csv, probe files) this object has written.
   std::set<std::string> onDisk_;
+  // Several MPI ranks: a .pvtp and a piece per rank per snapshot; only rank
+  // 0 writes the series, the logs and the record.
+  mpi::Communicator comm_;
 
   // The first time: the log written atomically from `text` (a new run's
   // header, or a resumed run's rows up to its snapshot); afterwards `text`

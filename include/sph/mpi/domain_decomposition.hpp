@@ -22,9 +22,9 @@
 //   - migrate(): every owned particle goes to the rank owning its cell, all
 //     its allocated fields with it (MPI_Alltoallv; fluid before walls on
 //     every rank, in the order of the sending ranks);
-//   - makeHalos(): an owned particle closer than `radius` (times 1 + 1e-9, as
-//     the periodic ghosts' layer) to a cell of another rank is sent to that
-//     rank once, where it is appended to the ghost range of Particles as a
+//   - makeHalos(): an owned particle, or a periodic ghost of one, closer than
+//     `radius` (times 1 + 1e-9, as the periodic ghosts' layer) to a cell of
+//     another rank is sent to that rank once, where it is appended to the ghost range of Particles as a
 //     halo particle (a ghost with a remote source, particles.hpp), halos of
 //     fluid among the ghosts of fluid and halos of walls among those of walls.
 //     So a neighbour list built on owned + ghosts finds exactly the pairs of
@@ -233,8 +233,25 @@ class DomainDecomposition {
       source.push_back(P.ghostSource()[g]);
       shift.push_back(P.ghostShift()[g]);
     }
+    // The periodic ghosts' slots: [owned, owned + ghosts), fluid first.
+    std::vector<std::uint32_t>& localSlot = localSlot_;
+    localSlot.clear();
+    for (std::size_t g = 0; g < P.ghostSource().size(); ++g)
+      if ((P.ghostSource()[g] & Particles<D>::kRemoteSource) == 0) localSlot.push_back(static_cast<std::uint32_t>(owned + g));
     clearHaloRecords();
-    // Which ranks each owned particle goes to (fluid first, as the owned).
+    // The senders, in the order a rank receives them: owned fluid, periodic
+    // ghosts of fluid, owned walls, ghosts of walls. A periodic ghost is sent
+    // like an owned particle: a rank whose cells are near a periodic face gets
+    // the images of another rank's particles across it (the ghosts' slots are
+    // renumbered below, once the halos' place among them is known).
+    std::vector<std::uint32_t>& senders = senders_;
+    senders.clear();
+    for (std::size_t i = 0; i < P.fluidCount(); ++i) senders.push_back(static_cast<std::uint32_t>(i));
+    for (std::size_t g = 0; g < fluidGhosts; ++g) senders.push_back(localSlot[g]);
+    for (std::size_t i = P.fluidCount(); i < owned; ++i) senders.push_back(static_cast<std::uint32_t>(i));
+    for (std::size_t g = fluidGhosts; g < localSlot.size(); ++g) senders.push_back(localSlot[g]);
+    const std::size_t fluidSenders = P.fluidCount() + fluidGhosts;
+    // Which ranks each sender goes to.
     const int reach = static_cast<int>(std::ceil(layer * invCell_));
     int span = 1;
     for (int d = 0; d < D; ++d) span *= 2 * reach + 1;
@@ -245,7 +262,8 @@ class DomainDecomposition {
     std::vector<char> marked(static_cast<std::size_t>(R), 0);
     std::vector<int> touched;
     touched.reserve(static_cast<std::size_t>(R));
-    for (std::size_t i = 0; i < owned; ++i) {
+    for (std::size_t s = 0; s < senders.size(); ++s) {
+      const std::size_t i = senders[s];
       const Vec<D>& x = P.x[i];
       const IVec<D> c = cellOf(x);
       touched.clear();
@@ -257,7 +275,9 @@ class DomainDecomposition {
           o[d] = c[d] + rest % (2 * reach + 1) - reach;
           self &= o[d] == c[d];
         }
-        if (self) continue;
+        // (An owned particle's own cell is its rank's; a periodic ghost's
+        // need not be: a cell across a periodic face may belong to any rank.)
+        if (self && i < owned) continue;
         // Distance from x to the box of cell o.
         Real dist2 = 0;
         for (int d = 0; d < D; ++d) {
@@ -274,7 +294,7 @@ class DomainDecomposition {
       for (int q : touched) {
         marked[q] = 0;
         lists[q].push_back(static_cast<std::uint32_t>(i));
-        fluidSent[q] += i < P.fluidCount();
+        fluidSent[q] += s < fluidSenders;
       }
     }
     sendIndex_.clear();
@@ -309,8 +329,38 @@ class DomainDecomposition {
     allShift.resize(allSource.size(), Vec<D>::Zero());
     for (std::size_t g = fluidGhosts, k = allFluid; g < source.size(); ++g, ++k) allShift[k] = shift[g];
     haloCount_ = static_cast<std::size_t>(slots);
+    // A periodic ghost of walls moves behind the halos of fluid.
+    const std::uint32_t wallGhostsFrom = static_cast<std::uint32_t>(owned + fluidGhosts);
+    const auto fluidHalos = static_cast<std::uint32_t>(allFluid - fluidGhosts);
+    for (std::uint32_t& i : sendIndex_)
+      if (i >= wallGhostsFrom) i += fluidHalos;
     P.addGhosts(allSource, allShift, allFluid);
     refreshHalos(P, P.allocated() & ~kListFields);
+  }
+
+  // Keep this rank's share of particles every rank holds alike (a run's
+  // start: every rank built the same particles): of the fluid and of the
+  // walls each, the r-th of R contiguous blocks. balance() and migrate()
+  // then give every particle its owner.
+  void keepShare(Particles<D>& P) const {
+    if (comm_.size == 1) return;
+    const std::size_t n = P.size(), nFluid = P.fluidCount(), R = static_cast<std::size_t>(comm_.size),
+                      r = static_cast<std::size_t>(comm_.rank);
+    const std::size_t f0 = nFluid * r / R, f1 = nFluid * (r + 1) / R;
+    const std::size_t w0 = nFluid + (n - nFluid) * r / R, w1 = nFluid + (n - nFluid) * (r + 1) / R;
+    P.clearGhosts();
+    P.forEachField([&](const FieldInfo& info, auto& field) {
+      if (((P.allocated() >> info.id) & 1u) == 0 || field.size() < n) return;
+      std::size_t k = 0;
+      for (std::size_t i = f0; i < f1; ++i) field[k++] = field[i];
+      for (std::size_t i = w0; i < w1; ++i) field[k++] = field[i];
+    });
+    P.resizeOwned((f1 - f0) + (w1 - w0), f1 - f0);
+  }
+
+  // The halo refresh as Particles' remote refresh (setRemoteRefresh).
+  static void refreshRemote(void* self, Particles<D>& P, FieldSet fields) {
+    static_cast<DomainDecomposition*>(self)->refreshHalos(P, fields);
   }
 
   std::size_t haloCount() const { return haloCount_; }
@@ -320,11 +370,15 @@ class DomainDecomposition {
   // The owned particles were reordered (Particles::permute(order): new k is
   // old order[k]); the halo's send lists follow them. Call it after every
   // sort between makeHalos() and the next migrate().
+  // `order` may cover the ghosts too (the hash grid's does: a periodic
+  // ghost that is sent follows its slot).
   void followPermutation(const std::vector<std::uint32_t>& order, std::size_t owned) {
     if (sendIndex_.empty()) return;
-    newIndex_.resize(owned);
-    for (std::size_t k = 0; k < owned; ++k) newIndex_[order[k]] = static_cast<std::uint32_t>(k);
-    for (std::uint32_t& i : sendIndex_) i = newIndex_[i];
+    if (order.size() < owned) throw std::logic_error("DomainDecomposition::followPermutation: an order per owned particle");
+    newIndex_.resize(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) newIndex_[order[k]] = static_cast<std::uint32_t>(k);
+    for (std::uint32_t& i : sendIndex_)
+      if (i < order.size()) i = newIndex_[i];
   }
 
   // Send the fields in `fields` of the halos again (collective among the
@@ -462,7 +516,7 @@ class DomainDecomposition {
   std::vector<int> sendCount_, sendAt_, recvCount_, recvAt_;
   // makeHalos' scratch, reused: no allocation once grown.
   std::vector<std::vector<std::uint32_t>> lists_;
-  std::vector<std::uint32_t> localSource_, allSource_;
+  std::vector<std::uint32_t> localSource_, allSource_, localSlot_, senders_;
   std::vector<Vec<D>> localShift_, allShift_;
   std::size_t haloCount_ = 0;
   // A refresh under way.

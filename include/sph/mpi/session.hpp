@@ -43,6 +43,14 @@ inline bool launchedByMpi() {
   return false;
 }
 
+// The communicator of the process's run: the active Session's (set by its
+// constructor, reset by its destructor), else {MPI_COMM_SELF, 0, 1}.
+inline Communicator& worldSlot() {
+  static Communicator world;
+  return world;
+}
+inline const Communicator& world() { return worldSlot(); }
+
 class Session {
  public:
   // initialise: false keeps MPI off whatever the environment (tests of the
@@ -64,11 +72,13 @@ class Session {
     MPI_Comm_dup(MPI_COMM_WORLD, &comm_);
     MPI_Comm_rank(comm_, &rank_);
     MPI_Comm_size(comm_, &size_);
+    worldSlot() = communicator();
   }
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
   ~Session() {
     if (!initialised_) return;
+    worldSlot() = Communicator{};
     MPI_Comm_free(&comm_);
     MPI_Finalize();
   }

@@ -1,0 +1,75 @@
+// Reductions over the ranks of a run: sums, minima and maxima every rank
+// gets (MPI_Allreduce), and the first failure of any rank. With one rank
+// they return their argument and make no MPI call, so the one-rank path is
+// the code it was.
+#pragma once
+
+#include "sph/mpi/session.hpp"
+#include "sph/types.hpp"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <string>
+
+namespace sph::mpi {
+
+inline double allSum(const Communicator& c, double value) {
+  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_SUM, c.comm);
+  return value;
+}
+inline std::int64_t allSum(const Communicator& c, std::int64_t value) {
+  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT64_T, MPI_SUM, c.comm);
+  return value;
+}
+inline double allMax(const Communicator& c, double value) {
+  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MAX, c.comm);
+  return value;
+}
+inline double allMin(const Communicator& c, double value) {
+  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, c.comm);
+  return value;
+}
+inline int allMax(const Communicator& c, int value) {
+  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT, MPI_MAX, c.comm);
+  return value;
+}
+// n values at once, in place (one message for several maxima / sums).
+inline void allMax(const Communicator& c, double* values, int n) {
+  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_MAX, c.comm);
+}
+inline void allSum(const Communicator& c, double* values, int n) {
+  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, c.comm);
+}
+inline void allSum(const Communicator& c, std::int64_t* values, int n) {
+  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_INT64_T, MPI_SUM, c.comm);
+}
+
+// Rank `root`'s text on every rank.
+inline std::string broadcast(const Communicator& c, std::string text, int root) {
+  if (c.size == 1) return text;
+  long long length = static_cast<long long>(text.size());
+  MPI_Bcast(&length, 1, MPI_LONG_LONG, root, c.comm);
+  text.resize(static_cast<std::size_t>(length));
+  if (length > 0) MPI_Bcast(text.data(), static_cast<int>(length), MPI_CHAR, root, c.comm);
+  return text;
+}
+
+// The lowest of the ranks' keys (INT64_MAX: none) and the lowest rank that
+// holds it (-1 when no rank has one): a failure found on any rank, named the
+// same on every rank.
+struct FirstOfRanks {
+  std::int64_t key = INT64_MAX;
+  int rank = -1;
+};
+inline FirstOfRanks firstOfRanks(const Communicator& c, std::int64_t key) {
+  FirstOfRanks first{key, key == INT64_MAX ? -1 : c.rank};
+  if (c.size == 1) return first;
+  MPI_Allreduce(MPI_IN_PLACE, &first.key, 1, MPI_INT64_T, MPI_MIN, c.comm);
+  int mine = key == first.key && key != INT64_MAX ? c.rank : c.size;
+  MPI_Allreduce(MPI_IN_PLACE, &mine, 1, MPI_INT, MPI_MIN, c.comm);
+  first.rank = mine == c.size ? -1 : mine;
+  return first;
+}
+
+}  // namespace sph::mpi
