@@ -9,7 +9,10 @@
 #include "sph/io/atomic_file.hpp"
 #include "sph/io/snapshot_polydata.hpp"
 
+#include <vtkDataArray.h>
 #include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkXMLPPolyDataWriter.h>
 
@@ -38,7 +41,27 @@ std::string pvtpPieceName(const std::string& pvtpPath, int rank) {
 template <int D>
 void writePvtpSummary(const std::string& pvtpPath, const Particles<D>& P, const SnapshotInfo& info, int pieces) {
   if (pieces < 1) throw std::logic_error("writePvtpSummary: pieces must be >= 1");
-  const vtkSmartPointer<vtkPolyData> poly = snapshotPolyData<D>(P, info, /*borrow=*/true);
+  vtkSmartPointer<vtkPolyData> poly = snapshotPolyData<D>(P, info, /*borrow=*/true);
+  if (poly->GetNumberOfPoints() == 0) {
+    // VTK's writer lists no piece for an empty data set (a rank 0 that owns
+    // no particle): the summary is made from one zero point with the same
+    // arrays (it holds their names and types, never their values).
+    auto one = vtkSmartPointer<vtkPolyData>::New();
+    one->DeepCopy(poly);
+    if (!one->GetPoints()) one->SetPoints(vtkSmartPointer<vtkPoints>::New());
+    one->GetPoints()->GetData()->SetNumberOfComponents(3);
+    one->GetPoints()->SetDataTypeToDouble();
+    one->GetPoints()->SetNumberOfPoints(1);
+    one->GetPoints()->SetPoint(0, 0.0, 0.0, 0.0);
+    vtkPointData* arrays = one->GetPointData();
+    for (int k = 0; k < arrays->GetNumberOfArrays(); ++k) {
+      vtkDataArray* array = arrays->GetArray(k);
+      if (!array) continue;
+      array->SetNumberOfTuples(1);
+      for (int c = 0; c < array->GetNumberOfComponents(); ++c) array->SetComponent(0, c, 0.0);
+    }
+    poly = one;
+  }
   vtkNew<SummaryOnlyWriter> writer;
   writer->SetFileName(pvtpPath.c_str());  // names the pieces; the text goes to a string
   writer->SetInputData(poly);
