@@ -200,9 +200,23 @@ def read_pvd(pvd):
     return steps
 
 
+def first_piece(pvtp):
+    """The first piece a parallel snapshot (.pvtp, a run on several MPI
+    ranks) lists, as a path: every piece has the same arrays."""
+    with open(pvtp, "rb") as fh:
+        text = fh.read().decode("latin-1")
+    m = re.search(r'<Piece\s+Source="([^"]+)"', text)
+    if not m:
+        raise RenderError("%s lists no piece" % pvtp)
+    return os.path.join(os.path.dirname(pvtp), m.group(1))
+
+
 def vtp_point_data_xml(vtp):
     """The <PointData> element of a VTK XML file as text ("" without one),
-    read from its XML header (works for inline and appended data)."""
+    read from its XML header (works for inline and appended data; for a
+    .pvtp, from its first piece)."""
+    if vtp.endswith(".pvtp"):
+        vtp = first_piece(vtp)
     head = []
     with open(vtp, "rb") as fh:
         for line in fh:
@@ -340,8 +354,10 @@ pv = None
 
 def field_data(vtp):
     """Field data of one output file as {name: tuple of values}, plus bounds."""
-    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
-    r = vtkXMLPolyDataReader()
+    from vtkmodules.vtkIOXML import (vtkXMLPolyDataReader,
+                                     vtkXMLPPolyDataReader)
+    r = (vtkXMLPPolyDataReader() if vtp.endswith(".pvtp")
+         else vtkXMLPolyDataReader())
     r.SetFileName(vtp)
     r.Update()
     return polydata_field_data(r.GetOutput())

@@ -157,6 +157,31 @@ def t_snapshot(e):
             "--centroid-box", "0", "0", "0.5", "0.5")
 
 
+def t_ranks(e):
+    """A run on 2 MPI ranks (a .pvtp and a piece per rank per snapshot):
+    the on-the-fly view and the water2d state render it."""
+    e.need_tools()
+    mpirun = shutil.which("mpirun")
+    if not mpirun:
+        raise TestFailure("mpirun not found (scripts/setup.sh installs openmpi-bin)")
+    run_dir = os.path.join(e.work, "dam_break")
+    case_file = os.path.join(ROOT, "cases", "dam_break.case")
+    run([mpirun, "--oversubscribe", "--allow-run-as-root", "-n", "2", e.a.sph,
+         "run", case_file, "--output", run_dir, "--end_time", "0.01",
+         "--threads", "1"])
+    pvtp = [f for f in os.listdir(run_dir) if f.endswith(".pvtp")]
+    if len(pvtp) < 2:
+        raise TestFailure("expected a .pvtp per snapshot, got %s" % pvtp)
+    png = os.path.join(e.work, "default.png")
+    e.render([run_dir, "--size"] + SIZE + ["--output", png])
+    e.check(png, "--size", *SIZE, "--min-span", "0.5")
+    state = os.path.join(HERE, "water2d.pvsm")
+    first = os.path.join(e.work, "first.png")
+    e.render([run_dir, "--state", state, "--time", "0", "--size"] + SIZE +
+             ["--output", first])
+    e.check(first, "--size", *SIZE, "--centroid-box", "0", "0", "0.5", "0.5")
+
+
 def state_case(state):
     root = ET.parse(state).getroot()
     for ann in root.iter("Annotation"):
@@ -710,7 +735,8 @@ TESTS = {"snapshot": t_snapshot, "state": t_state,
          "walls": t_walls, "catalyst-png": t_catalyst_png,
          "catalyst-same-particles": t_catalyst_same_particles,
          "catalyst-refusals": t_catalyst_refusals,
-         "catalyst-live": t_catalyst_live, "units": t_units}
+         "catalyst-live": t_catalyst_live, "units": t_units,
+         "ranks": t_ranks}
 
 
 def main():
