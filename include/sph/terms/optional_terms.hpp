@@ -28,7 +28,6 @@
 
 #include "sph/terms/artificial_pressure.hpp"
 #include "sph/terms/linear_damping.hpp"
-#include "sph/terms/scratch_density_relaxation.hpp"
 
 #include "sph/kernels/kernels.hpp"
 
@@ -40,7 +39,7 @@ namespace sph {
 
 // THE list: the order is the order of their keys in the key table, and,
 // among the terms of a kind, of their contributions.
-using OptionalTerms = std::tuple<LinearDamping, ArtificialPressure, ScratchDensityRelaxation>;
+using OptionalTerms = std::tuple<LinearDamping, ArtificialPressure>;
 
 static_assert(std::tuple_size_v<OptionalTerms> <= 8, "term_bits.hpp has room for 8 listed terms");
 
