@@ -23,7 +23,8 @@
 // force pass's epilogue after the body forces.
 // The key table (case_keys.cpp), the case checks (case_config.cpp), the
 // model (model_registry.hpp, models/wcsph.hpp) and the passes iterate this
-// list at compile time: a term is its file and its line here.
+// list at compile time: a term is its file, and its #include and its entry
+// here.
 #pragma once
 
 #include "sph/terms/artificial_pressure.hpp"
