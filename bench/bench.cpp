@@ -137,7 +137,7 @@ CaseConfig toyStar(int dim, long n) {
   c.eos = "polytropic";
   c.k = 0.1;
   c.viscosity = "none";
-  c.damping = 1;
+  c.termKeys.reals["damping"] = 1;
   c.g = 0;
   c.walls = false;
   c.starMass = 2;

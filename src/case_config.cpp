@@ -65,9 +65,16 @@ void validateCase(const CaseConfig& c) {
       if (!value.empty())
         throw CaseError(std::string(key) + " = \"" + value + "\" does not apply to model seed_wcsph "
                         "(its kernels, EOS and viscosity are fixed); use model = \"wcsph\"");
-    if (c.xsph != 0 || c.damping != 0 || c.starMass != 0 || c.cfl != 0)
-      throw CaseError("xsph, damping, star_* and cfl need model = \"wcsph\"; model seed_wcsph "
+    if (c.xsph != 0 || c.starMass != 0 || c.cfl != 0)
+      throw CaseError("xsph, star_* and cfl need model = \"wcsph\"; model seed_wcsph "
                       "is the seed scheme exactly");
+    // The optional terms are model wcsph's (terms/optional_terms.hpp).
+    forEachOptionalTerm([&](auto tag) {
+      using T = typename decltype(tag)::type;
+      if (T::fromCase(c).active())
+        throw CaseError(std::string(T::keys().front().name) + " needs model = \"wcsph\"; model seed_wcsph is "
+                        "the seed scheme exactly");
+    });
     if (c.neighbourSkin != 0)
       throw CaseError("neighbour_skin = " + significant(c.neighbourSkin) + ": model seed_wcsph takes 0 only (its "
                       "pressure and viscosity factors are not cut off at the support, so a pair in the skin would "
@@ -79,6 +86,7 @@ void validateCase(const CaseConfig& c) {
   validateChosenMethods(c);  // each chosen method's own rules (methods.hpp)
   validateWallsAndDensity(c);
   validateTension(c);
+  validateOptionalTerms(c);  // terms/optional_terms.hpp
   validateProbes(c);
   if (c.name.empty() || c.name == "." || c.name == ".." ||
       c.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
@@ -158,8 +166,7 @@ std::vector<std::pair<std::string, std::string>> unusedKeys(const ResolvedCase& 
   auto note = [&](const char* key, const std::string& why) { unused.emplace_back(key, why); };
   const bool seed = !composedModel(c);
   noteUnusedMethodKeys(c, note);  // the keys the methods declare (methods.hpp)
-  if (seed || c.artificialPressure == 0)
-    note("artificial_pressure_n", "artificial_pressure is 0 (off); it applies to artificial_pressure > 0");
+  noteUnusedTermKeys(c, note);  // the keys the optional terms declare
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
   if (!wallParticles(c))
     note("wall_guard", "the walls are not particles; it applies to boundary dummy, dynamic or repulsive");

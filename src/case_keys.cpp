@@ -3,6 +3,7 @@
 #include "sph/integrators/integrators.hpp"
 #include "sph/io/number_format.hpp"
 #include "sph/methods.hpp"
+#include "sph/terms/optional_terms.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -39,6 +40,15 @@ void insertMethodParameters(std::vector<KeySpec>& rows, const char* chooser, con
   if (at != rows.end()) ++at;
   for (const auto& method : table)
     for (const KeySpec& key : method.params) at = rows.insert(at, key) + 1;
+}
+
+// The keys the optional terms declare, in list order, after the row of `after`.
+void insertTermKeys(std::vector<KeySpec>& rows, const char* after) {
+  auto at = std::find_if(rows.begin(), rows.end(), [&](const KeySpec& k) { return std::string(k.name) == after; });
+  if (at != rows.end()) ++at;
+  forEachOptionalTerm([&](auto term) {
+    for (const KeySpec& key : decltype(term)::type::keys()) at = rows.insert(at, key) + 1;
+  });
 }
 
 }  // namespace
@@ -174,15 +184,8 @@ const std::vector<KeySpec>& caseKeys() {
        "flows (no shift within a support of a free surface)",
        {}, nullptr, shiftingNames},
       {"xsph", G::kPhysics, &C::xsph, "", "XSPH epsilon (model wcsph; 0: off)", within(0, 1), nullptr, nullptr},
-      {"damping", G::kPhysics, &C::damping, "1/s", "Linear damping nu in a = -nu v (model wcsph; 0: off)",
-       within(0, 1e6), nullptr, nullptr},
-      // Tensile instability and surface tension (model wcsph)
-      {"artificial_pressure", G::kPhysics, &C::artificialPressure, "",
-       "Monaghan (2000) artificial pressure epsilon against the tensile instability: R_ij (W_ij/W(dx))^n added to "
-       "the pressure term (0: off; 0.2 usual; needs spacing)",
-       within(0, 10), nullptr, nullptr},
-      {"artificial_pressure_n", G::kPhysics, &C::artificialPressureN, "",
-       "Exponent n of (W_ij/W(dx))^n in the artificial pressure (4 usual)", count(1, 16), nullptr, nullptr},
+      // (the optional terms' keys follow xsph: terms/optional_terms.hpp)
+      // Surface tension (model wcsph)
       {"surface_tension", G::kPhysics, &C::surfaceTension, "",
        "Colour-field surface tension f = sigma kappa grad c: none; morris: kappa = -div(n/|n|) (Morris 2000); "
        "muller: kappa = -lap c/|n|, f = -sigma lap c n/|n| (Mueller, Charypar & Gross 2003); corrected: morris with "
@@ -288,6 +291,7 @@ const std::vector<KeySpec>& caseKeys() {
     insertMethodParameters(rows, "surface_tension", surfaceTensionMethods());
     insertMethodParameters(rows, "density_reinit", densityReinitMethods());
     insertMethodParameters(rows, "boundary", boundaryMethods());
+    insertTermKeys(rows, "xsph");
     return rows;
   }();
   return keys;
@@ -298,6 +302,19 @@ const KeySpec* findKey(const std::string& name) {
     if (name == k.name) return &k;
   return nullptr;
 }
+
+namespace {
+template <class T>
+T termKeyOf(const CaseConfig& c, const std::string& name) {
+  const KeySpec* k = findKey(name);
+  const auto* key = k ? std::get_if<TermKey<T>>(&k->field) : nullptr;
+  if (!key) throw std::logic_error("no term key " + name + " of this type");
+  return keyValue(c, *key);
+}
+}  // namespace
+
+Real termReal(const CaseConfig& c, const std::string& name) { return termKeyOf<Real>(c, name); }
+long termCount(const CaseConfig& c, const std::string& name) { return termKeyOf<long>(c, name); }
 
 std::string keyHelp(const KeySpec& k) {
   std::string text = k.help;
@@ -328,12 +345,12 @@ void checkKeyRanges(const CaseConfig& c) {
     };
     std::visit(
         [&](auto member) {
-          using T = std::decay_t<decltype(c.*member)>;
-          const T& value = c.*member;
+          using T = std::decay_t<decltype(keyValue(c, member))>;
+          const T& value = keyValue(c, member);
           if constexpr (std::is_same_v<T, Real> || std::is_same_v<T, long> || std::is_same_v<T, int>) {
             // A key not given keeps its initial value, which may stand for
             // "none" outside the range (star_mass, star_radius: no star).
-            if (!c.isGiven(k.name) && value == unset.*member) return;
+            if (!c.isGiven(k.name) && value == keyValue(unset, member)) return;
             if (!k.range.contains(static_cast<double>(value))) bad(significant(static_cast<double>(value)));
           } else if constexpr (std::is_same_v<T, std::vector<Real>> || std::is_same_v<T, std::vector<long>>) {
             for (const auto& x : value)
@@ -368,8 +385,8 @@ std::string numberText(T x) {
 std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
   return std::visit(
       [&](auto member) -> std::string {
-        using T = std::decay_t<decltype(c.*member)>;
-        const T& value = c.*member;
+        using T = std::decay_t<decltype(keyValue(c, member))>;
+        const T& value = keyValue(c, member);
         if constexpr (std::is_same_v<T, bool>) {
           return value ? "true" : "false";
         } else if constexpr (std::is_same_v<T, std::string>) {
@@ -388,7 +405,7 @@ std::string keyValueText(const CaseConfig& c, const KeySpec& k) {
         } else {
           // A number at its initial value outside its range is "none" (star_mass).
           static const CaseConfig unset;
-          if (value == unset.*member && !k.range.contains(static_cast<double>(value))) return "";
+          if (value == keyValue(unset, member) && !k.range.contains(static_cast<double>(value))) return "";
           return numberText(value);
         }
       },

@@ -132,10 +132,6 @@ void validateWallsAndDensity(const CaseConfig& c) {
 }
 
 void validateTension(const CaseConfig& c) {
-  if (!composedModel(c) && c.artificialPressure != 0) requireComposedForTension(c);
-  if (c.artificialPressure > 0 && !(c.spacing > 0))
-    throw CaseError("artificial_pressure = " + std::to_string(c.artificialPressure) +
-                    " needs spacing (> 0): its f_ij = W(r_ij)/W(dx) is relative to the particle spacing dx");
   const std::size_t D = static_cast<std::size_t>(c.dimension);
   if (c.colourBoxMin.size() != c.colourBoxMax.size() || (!c.colourBoxMin.empty() && c.colourBoxMin.size() != D))
     throw CaseError("colour_box_min and colour_box_max need " + std::to_string(D) +

@@ -42,7 +42,7 @@ void declareKeys(CLI::App& run, sph::CaseConfig& c) {
     const std::string group = sph::groupName(k.group);
     std::visit(
         [&](auto member) {
-          auto& field = c.*member;
+          auto& field = sph::keyRef(c, member);
           using T = std::decay_t<decltype(field)>;
           CLI::Option* o;
           if constexpr (std::is_same_v<T, bool>)

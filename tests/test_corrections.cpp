@@ -220,7 +220,7 @@ void cspmGradient() {
   }
   BOOST_TEST(checkedSurface >= static_cast<std::size_t>(std::pow(s.n - 7, D - 1)));
 
-  WcsphForcePass<D> forces{s.kernel, NoViscosity{}, {}, 0, false, {}, true, false, true, false, 0, 4, 0, std::nullopt};
+  WcsphForcePass<D> forces{s.kernel, NoViscosity{}, {}, 0, false, {}, true, false, true, false, std::nullopt};
   Vec<D> G;
   for (int d = 0; d < D; ++d) G[d] = 2e4 + 1e4 * d;
 
@@ -298,7 +298,7 @@ void cspmContinuityFollowsThePacking() {
   std::uniform_real_distribution<Real> u(-1, 1);
   for (std::size_t i = 0; i < s.P.size(); ++i)
     for (int d = 0; d < D; ++d) s.P.v[i][d] = i < s.P.fluidCount() ? u(rng) : 0;
-  WcsphForcePass<D> forces{s.kernel, NoViscosity{}, {}, 0, false, {}, true, false, true, false, 0, 4, 0, std::nullopt};
+  WcsphForcePass<D> forces{s.kernel, NoViscosity{}, {}, 0, false, {}, true, false, true, false, std::nullopt};
   forces.continuity = true;
   forces.cspm = true;
   forces.run(s.P, s.neighbours, ctx);

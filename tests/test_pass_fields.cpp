@@ -47,7 +47,7 @@ void setKey(CaseConfig& c, const std::string& key, const std::vector<std::string
   BOOST_REQUIRE_MESSAGE(k, "unknown key " << key);
   std::visit(
       [&](auto member) {
-        auto& field = c.*member;
+        auto& field = keyRef(c, member);
         using F = std::decay_t<decltype(field)>;
         if constexpr (std::is_same_v<F, std::string>) field = values.at(0);
         else if constexpr (std::is_same_v<F, bool>) field = values.at(0) == "true";

@@ -394,7 +394,7 @@ BOOST_AUTO_TEST_CASE(surface_tension_and_artificial_pressure_cost_nothing_when_o
     BOOST_TEST(s.model().passes().size() == 2u);  // density + EOS, forces
   }
   c.surfaceTension = "morris";
-  c.artificialPressure = 0.2;
+  c.termKeys.reals["artificial_pressure"] = 0.2;
   Scene<2> s = test::sceneOf<2>(c);
   BOOST_REQUIRE(!s.step());
   const unsigned ran = s.model().executedTerms();

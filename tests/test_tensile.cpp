@@ -35,7 +35,7 @@ Real smallestGap(Real artificialPressure) {
   c.dt = 2e-4;
   c.endTime = 0.2;
   c.particleFile = test::caseFile("tensile_block").replace(test::caseFile("tensile_block").size() - 5, 5, ".csv");
-  c.artificialPressure = artificialPressure;
+  c.termKeys.reals["artificial_pressure"] = artificialPressure;
   Scene<2> s = test::sceneOf<2>(c);
   Real smallest = minPairDistance(s.particles());
   const long steps = stepsFor(c);

@@ -11,6 +11,7 @@
 #include "sph/method_defaults.hpp"
 #include "sph/types.hpp"
 
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,15 @@ namespace sph {
 class CaseError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// The values of the keys the optional terms declare (terms/optional_terms.hpp),
+// by key name: a term's keys are declared in its own file, not as fields
+// here. A key absent from the map has its declared initial value
+// (termKeyValue, case_keys.hpp).
+struct TermKeyValues {
+  std::map<std::string, Real> reals;
+  std::map<std::string, long> counts;
 };
 
 struct CaseConfig {
@@ -80,9 +90,7 @@ struct CaseConfig {
   Real alpha = 1, beta = 2; // Monaghan artificial viscosity
   Real nu = 1e-6;           // kinematic viscosity (viscosity morris)
   Real xsph = 0;            // XSPH epsilon (0: off)
-  Real damping = 0;         // nu in a = -nu v (0: off)
-  Real artificialPressure = 0;   // Monaghan 2000 artificial pressure epsilon (0: off)
-  long artificialPressureN = 4;  // its exponent n in f_ij^n
+  TermKeyValues termKeys;   // the optional terms' keys (damping, artificial_pressure, ...)
   std::string surfaceTension = "none";  // none | morris | muller (colour-field force, terms/colour_surface_tension.hpp)
   Real sigma = 0;                // surface tension coefficient [N/m in 3D, N in 2D per unit depth]
   Real surfaceThreshold = 0.1;   // the force acts where |grad c| > surface_threshold / h
@@ -167,7 +175,8 @@ void validateCase(const CaseConfig& c);
 
 // The wall-particle and density keys (src/case_physics.cpp), part of validateCase.
 void validateWallsAndDensity(const CaseConfig& c);
-// The artificial-pressure and surface-tension keys (src/case_physics.cpp), part of validateCase.
+// The surface-tension keys (src/case_physics.cpp), part of validateCase (the optional terms' keys:
+// validateOptionalTerms, terms/optional_terms.hpp).
 void validateTension(const CaseConfig& c);
 
 // The fluid bodies: blocks, discs, their velocities, overlaps and the

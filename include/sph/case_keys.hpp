@@ -10,6 +10,7 @@
 #include "sph/case_config.hpp"
 
 #include <limits>
+#include <map>
 #include <string>
 #include <variant>
 #include <vector>
@@ -42,9 +43,42 @@ inline KeyRange count(double lo, double hi) { return {lo, hi, false, false, true
 inline KeyRange coordinate() { return within(-1e9, 1e9); }
 }  // namespace key_range
 
+// A key an optional term declares (terms/optional_terms.hpp): its value is
+// in CaseConfig::termKeys under the key's name, `initial` when not set.
+template <class T>
+struct TermKey {
+  const char* name;
+  T initial;
+};
+
 using KeyField = std::variant<Real CaseConfig::*, long CaseConfig::*, int CaseConfig::*, bool CaseConfig::*,
                               std::string CaseConfig::*, std::vector<Real> CaseConfig::*,
-                              std::vector<long> CaseConfig::*>;
+                              std::vector<long> CaseConfig::*, TermKey<Real>, TermKey<long>>;
+
+// The value a key field holds in c (a CaseConfig member, or a term's key),
+// and a reference to it to set (a term's key is then stored in c.termKeys).
+template <class T>
+const T& keyValue(const CaseConfig& c, T CaseConfig::*member) {
+  return c.*member;
+}
+template <class T>
+T& keyRef(CaseConfig& c, T CaseConfig::*member) {
+  return c.*member;
+}
+inline const std::map<std::string, Real>& termKeyMap(const CaseConfig& c, Real) { return c.termKeys.reals; }
+inline const std::map<std::string, long>& termKeyMap(const CaseConfig& c, long) { return c.termKeys.counts; }
+inline std::map<std::string, Real>& termKeyMap(CaseConfig& c, Real) { return c.termKeys.reals; }
+inline std::map<std::string, long>& termKeyMap(CaseConfig& c, long) { return c.termKeys.counts; }
+template <class T>
+T keyValue(const CaseConfig& c, TermKey<T> key) {
+  const auto& map = termKeyMap(c, T{});
+  const auto at = map.find(key.name);
+  return at == map.end() ? key.initial : at->second;
+}
+template <class T>
+T& keyRef(CaseConfig& c, TermKey<T> key) {
+  return termKeyMap(c, T{}).try_emplace(key.name, key.initial).first->second;
+}
 
 struct KeySpec {
   const char* name;           // the key, and the flag --name
@@ -59,6 +93,15 @@ struct KeySpec {
 
 const std::vector<KeySpec>& caseKeys();
 const KeySpec* findKey(const std::string& name);
+
+// A row of the key table for a key an optional term declares (its value
+// in CaseConfig::termKeys), and the value of such a key in c.
+template <class T>
+KeySpec termKey(const char* name, KeyGroup group, const char* unit, const char* help, KeyRange range, T initial) {
+  return {name, group, TermKey<T>{name, initial}, unit, help, range, nullptr, nullptr};
+}
+Real termReal(const CaseConfig& c, const std::string& name);
+long termCount(const CaseConfig& c, const std::string& name);
 
 // The help line of a key: "help [unit; range; default]" and its choices.
 std::string keyHelp(const KeySpec& k);

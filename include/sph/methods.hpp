@@ -380,7 +380,7 @@ inline const std::vector<Method<bool>>& neighbourWalkMethods() {
 // curvature method, none for no surface tension.
 inline void requireComposedForTension(const CaseConfig& c) {
   if (!composedModel(c))
-    throw CaseError("artificial_pressure and surface_tension need model = \"wcsph\"; model seed_wcsph is the seed "
+    throw CaseError("surface_tension needs model = \"wcsph\"; model seed_wcsph is the seed "
                     "scheme exactly");
 }
 inline const std::vector<Method<std::optional<CurvatureMethod>>>& surfaceTensionMethods() {

@@ -63,7 +63,6 @@ Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>>
   const Vec<D> g = gravityVector<D>(c);
   if (!g.isZero()) spec.bodies.gravity = UniformGravity<D>{g};
   if (c.starMass > 0) spec.bodies.star = StarAttraction<D>{starLambda(c)};
-  if (c.damping > 0) spec.bodies.damping = LinearDamping<D>{c.damping};
   spec.density = densityTreatment(c);
   spec.diffusion = densityDiffusion(c);
   spec.boundary = activeBoundary(c);
@@ -73,8 +72,7 @@ Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>>
   spec.reinit = methodRow(densityReinitMethods(), "density_reinit", c.densityReinit).make(c);
   spec.reinitEvery = c.densityReinitEvery;
   spec.cspm = methodRow(gradientCorrectionMethods(), "gradient_correction", c.gradientCorrection).make(c);
-  spec.artificialPressure = c.artificialPressure;
-  spec.artificialPressureN = static_cast<int>(c.artificialPressureN);
+  spec.terms = optionalTermsOf(c);
   if (const auto curvature = surfaceTensionCurvature(c)) {
     spec.surfaceTension = c.sigma;
     spec.curvature = *curvature;

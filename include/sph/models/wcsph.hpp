@@ -5,8 +5,9 @@
 //   p_i   = EOS(rho_i)                                          (equation_of_state.hpp)
 //   a_i   = - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) grad W     (symmetric_pressure.hpp)
 //           + viscosity (none | laplacian | monaghan | morris)
-//           [+ artificial pressure, Monaghan 2000]             (artificial_pressure.hpp)
-//           + body forces (gravity -g e_up, star -lambda x, damping -nu v)
+//           [+ the optional pair terms: artificial pressure]  (terms/optional_terms.hpp)
+//           + body forces (gravity -g e_up, star -lambda x)
+//           [+ the optional per-particle terms: damping -nu v]
 //           [+ colour-field surface tension]                  (colour_surface_tension.hpp)
 //   dx_i/dt = v_i [+ XSPH correction]
 // (Monaghan 1992; Monaghan 2005, "Smoothed particle hydrodynamics", Rep. Prog. Phys. 68.)
@@ -54,13 +55,12 @@ struct WcsphSpec {
   DensityReinit reinit = DensityReinit::kNone;
   long reinitEvery = 20;       // steps between re-initialisations
   bool cspm = false;           // CSPM gradient correction in the pressure gradient
-  Real artificialPressure = 0; // Monaghan 2000 epsilon (0: off); needs spacing
-  int artificialPressureN = 4;
   Real surfaceTension = 0;     // sigma of the colour-field force (0: off)
   CurvatureMethod curvature = CurvatureMethod::kMorris;
   bool twoPhase = false;       // colour regions given (else a free surface)
   Real surfaceThreshold = 0.1; // |n| > threshold / h
   std::optional<SinusoidalWallMotion<D>> wallMotion = std::nullopt;  // a paddle (dummy walls read its a_w)
+  OptionalTerms terms{};       // terms/optional_terms.hpp (each off by default)
 };
 
 template <int D>
@@ -92,7 +92,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   }
   if (s.bodies.gravity) info.termNames.push_back("gravity");
   if (s.bodies.star) info.termNames.push_back("star_attraction");
-  if (s.bodies.damping) info.termNames.push_back("damping");
+  forEachActiveTermName(s.terms, [&](const char* name) { info.termNames.push_back(name); });
   if (s.xsphEpsilon > 0) {
     info.needs |= fieldBit(kFieldVXsph);
     info.termNames.push_back("xsph");
@@ -100,7 +100,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
 
   const WallSums walls = s.boundary.sums;
   WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, continuity, {}, walls,
-                           true, false, 0, 4, 0, std::nullopt};
+                           true, false, std::nullopt, s.terms};
   if (continuity && s.diffusion.delta > 0) {
     forces.diffusion = DensityDiffusion<D>::build(s.diffusion, h, c0, s.restDensity, g);
     info.termNames.push_back(s.diffusion.term);
@@ -108,12 +108,6 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   forces.wallViscosity = s.noSlip;
   forces.cspm = s.cspm;
 
-  if (s.artificialPressure > 0) {
-    forces.artificialPressure = s.artificialPressure;
-    forces.artificialPressureN = s.artificialPressureN;
-    forces.spacing = s.spacing;
-    info.termNames.push_back("artificial_pressure_monaghan2000");
-  }
   if (s.surfaceTension > 0) {
     // The corrected method spreads kappa over the band's tails: its force acts wherever n != 0.
     const bool band = s.curvature == CurvatureMethod::kCorrected && s.twoPhase;
@@ -163,7 +157,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   // The density rate the leap-frog and symplectic Euler integrators take
   // apart (StepContext::densityRateApart): continuity and its diffusion.
   std::vector<Pass<D>> densityRate;
-  if (continuity) densityRate.push_back(DensityRatePass<D>{s.kernel, forces.diffusion, walls});
+  if (continuity) densityRate.push_back(DensityRatePass<D>{s.kernel, forces.diffusion, walls, s.terms});
   return Model<D>(info, std::move(passes), std::move(afterStep), std::move(densityRate));
 }
 

@@ -9,7 +9,8 @@
 // then leaves d rho/dt alone (StepContext::densityRateApart). The
 // continuity sum takes the plain grad W, CSPM or not
 // (continuity_density.hpp), so no correction is formed here. One pair loop
-// per kernel.
+// per kernel. The optional terms that write the density rate only
+// (terms/optional_terms.hpp) follow the diffusion, in their list order.
 #pragma once
 
 #include "sph/boundaries/wall_sums.hpp"
@@ -19,6 +20,7 @@
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/continuity_density.hpp"
 #include "sph/terms/density_diffusion.hpp"
+#include "sph/terms/optional_terms.hpp"
 
 #include <tuple>
 #include <variant>
@@ -30,11 +32,14 @@ struct DensityRatePass {
   Kernel<D> kernel;
   DensityDiffusion<D> diffusion;  // coefficient 0: off
   WallSums walls{};               // wall pairs (inSums), the walls' own rates (densityRates)
+  OptionalTerms terms{};          // its density-rate-only ones run here
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
-  // run() reads x, m and v (rho for the diffusion); writes d rho/dt.
+  // run() reads x, m and v (rho for the diffusion, what the optional
+  // density-rate terms read); writes d rho/dt.
   FieldAccess fields(const StepContext&) const {
-    return {fieldBits(kFieldX, kFieldM, kFieldV) | (diffusion.active() ? fieldBit(kFieldRho) : 0u),
+    return {fieldBits(kFieldX, kFieldM, kFieldV) | (diffusion.active() ? fieldBit(kFieldRho) : 0u) |
+                rateTermReads(terms),
             fieldBit(kFieldDrho)};
   }
 };
@@ -45,7 +50,9 @@ unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighb
   const unsigned bits = std::visit(
       [&](const auto& k) {
         const ContinuityDensity rate{true};
-        return runPairLoop(P, neighbours, k, k.support(), std::make_tuple(rate, diffusion), std::make_tuple(rate),
+        return runPairLoop(P, neighbours, k, k.support(),
+                           std::tuple_cat(std::make_tuple(rate, diffusion), densityRateTermEvaluators(terms, k)),
+                           std::make_tuple(rate),
                            std::make_tuple(ContinuityDensity{walls.densityRates}), DensityRateEpilogue<D>{},
                            DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, walls.densityRates},
                            NoGradientCorrection{});

@@ -21,17 +21,26 @@ namespace sph {
 // a_i = rates.a + rates.F / rho_i + body forces [+ surface tension, from
 // the colour field's pre-pass]; the other rates as the packs write them.
 // The one epilogue of every force pass.
-template <int D, unsigned Writes>
+// Extra: more per-particle accelerations after the body forces (the
+// optional terms', terms/optional_terms.hpp), add(i, P, a).
+template <int D>
+struct NoExtraForces {
+  void add(std::size_t, const Particles<D>&, Vec<D>&) const {}
+};
+
+template <int D, unsigned Writes, class Extra = NoExtraForces<D>>
 struct ForceEpilogue {
   const BodyForces<D>& bodies;
   Real xsphEpsilon = 0;
   bool densityRate = false;  // continuity density: write d rho/dt
   const ColourSurfaceTension<D>* surfaceTension = nullptr;  // none: one branch per particle
+  Extra extra{};
 
   void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const {
     Vec<D> a = r.a;
     if constexpr ((Writes & rates::kForceDensity) != 0) a += r.F / P.rho[i];
     bodies.add(i, P, a);
+    extra.add(i, P, a);
     if (surfaceTension) a += surfaceTension->acceleration(i, P);
     P.a[i] = a;
     if constexpr ((Writes & rates::kDensityRate) != 0)

@@ -1,8 +1,9 @@
 // Pass: the wcsph model's pair terms fused in one pair loop:
 //   d rho_i/dt = continuity + density diffusion        (density = continuity)
-//   a_i        = symmetric pressure [+ Monaghan's artificial pressure]
+//   a_i        = symmetric pressure [+ the optional pair terms]
 //                + viscosity (none | laplacian | monaghan)
-//                + body forces and surface tension (epilogue),
+//                + body forces [+ the optional per-particle terms]
+//                + surface tension (epilogue),
 //   XSPH correction (when eps > 0).
 // Fluid neighbours and wall neighbours (dummy or dynamic wall particles,
 // with their p, rho and the velocity they show the fluid) go through the
@@ -20,6 +21,10 @@
 // continuity term keeps grad W, so that the density follows the particles'
 // packing: continuity_density.hpp); that choice too is a branch per pair,
 // the same for every pair, not a second instantiation.
+// The optional terms (terms/optional_terms.hpp: artificial pressure, linear
+// damping, ...) come from their list: the pair terms' evaluators after the
+// pressure term in the fluid-fluid pack, the per-particle terms in the
+// epilogue; an inactive one is one predictable branch, not an instantiation.
 #pragma once
 
 #include "sph/boundaries/wall_sums.hpp"
@@ -28,13 +33,13 @@
 #include "sph/passes/cspm_correction.hpp"
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/step_context.hpp"
-#include "sph/terms/artificial_pressure.hpp"
 #include "sph/terms/body_forces.hpp"
 #include "sph/terms/continuity_density.hpp"
 #include "sph/terms/density_diffusion.hpp"
 #include "sph/terms/laplacian_viscosity.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
 #include "sph/terms/morris_viscosity.hpp"
+#include "sph/terms/optional_terms.hpp"
 #include "sph/terms/symmetric_pressure.hpp"
 #include "sph/terms/xsph.hpp"
 
@@ -85,10 +90,8 @@ struct WcsphForcePass {
   WallSums walls{};                   // the boundary's: wall pairs (inSums), wall d rho/dt (densityRates)
   bool wallViscosity = true;          // the viscous term sees the walls (not with free-slip)
   bool cspm = false;                  // CSPM-corrected pressure gradient (needs cspmL)
-  Real artificialPressure = 0;        // Monaghan 2000 epsilon (0: off)
-  int artificialPressureN = 4;        // its exponent n
-  Real spacing = 0;                   // dx of f_ij = W(r)/W(dx)
   std::optional<ColourSurfaceTension<D>> surfaceTension;  // from the colour pre-pass
+  OptionalTerms terms{};              // terms/optional_terms.hpp (each off by default)
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
   // run() reads x, m, rho and p; v for the viscosity (vWall of the wall
@@ -111,6 +114,7 @@ struct WcsphForcePass {
     if (rateHere || xsphEpsilon > 0) reads |= fieldBit(kFieldV);
     if (cspm) reads |= fieldBit(kFieldCspmL);
     if (surfaceTension) reads |= ColourSurfaceTension<D>::kReads;
+    reads |= optionalTermReads(terms);
     const FieldSet writes = fieldBit(kFieldA) | (rateHere ? fieldBit(kFieldDrho) : 0u) |
                             (xsphEpsilon > 0 ? fieldBit(kFieldVXsph) : 0u);
     return {reads, writes};
@@ -131,9 +135,8 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         const SymmetricPressure pressure{cspm};
         const GradientCorrection<D> correct{cspm ? P.cspmL.data() : nullptr};
         const ContinuityDensity rate{rateHere};
-        const MonaghanArtificialPressure<K> tension{k, artificialPressure, artificialPressureN,
-                                                    artificialPressure > 0 ? 1 / k.W(spacing) : 0};
-        const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusionHere, pressure, tension),
+        const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusionHere, pressure),
+                                               pairTermEvaluators(terms, k, rateHere),
                                                viscosityPack<K, false>(k, visc),
                                                std::make_tuple(Xsph<K>{k, xsphEpsilon}));
         const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, pressure),
@@ -141,13 +144,15 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
         return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
                            std::make_tuple(ContinuityDensity{wallRatesHere}),
-                           ForceEpilogue<D, writes>{bodies, xsphEpsilon, rateHere,
-                                                    surfaceTension ? &*surfaceTension : nullptr},
+                           ForceEpilogue<D, writes, ParticleTermForces<D>>{
+                               bodies, xsphEpsilon, rateHere, surfaceTension ? &*surfaceTension : nullptr,
+                               ParticleTermForces<D>{terms}},
                            DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, wallRatesHere}, correct);
       },
       kernel, viscosity);
   const unsigned wallBits = walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
-  return bits | wallBits | bodies.bits() | (surfaceTension ? term_bits::kSurfaceTension : 0u);
+  return bits | wallBits | bodies.bits() | particleTermBits(terms) |
+         (surfaceTension ? term_bits::kSurfaceTension : 0u);
 }
 
 extern template struct WcsphForcePass<2>;

@@ -16,9 +16,17 @@
 // Fluid-fluid pairs only (wall particles carry no tension of their own).
 // Switched at run time like XSPH: eps = 0 is one predictable branch per
 // pair, and the pair loop is not compiled twice.
+// An optional term (optional_terms.hpp): ArtificialPressure is what the case
+// declares (keys, checks); MonaghanArtificialPressure<Kernel> its pair
+// evaluator, placed in the force pass's pack after the pressure term.
 #pragma once
 
+#include "sph/case_keys.hpp"
+#include "sph/fields.hpp"
 #include "sph/pair_loop.hpp"
+
+#include <string>
+#include <vector>
 
 namespace sph {
 
@@ -46,6 +54,47 @@ struct MonaghanArtificialPressure {
     Real fn = 1;
     for (int k = 0; k < n; ++k) fn *= f;
     r.a += (-P.m[c.j] * R * fn) * c.gradW;
+  }
+};
+
+struct ArtificialPressure {
+  static constexpr const char* name = "artificial_pressure_monaghan2000";
+  static constexpr unsigned bit = term_bits::kArtificialPressure;
+  static constexpr bool kPerPair = true;  // pairEvaluator()
+  Real epsilon = 0;                       // 0: off
+  int n = 4;
+  Real spacing = 0;                       // dx
+
+  static std::vector<KeySpec> keys() {
+    using namespace key_range;
+    return {termKey("artificial_pressure", KeyGroup::kPhysics, "",
+                    "Monaghan (2000) artificial pressure epsilon against the tensile instability: R_ij (W_ij/W(dx))^n "
+                    "added to the pressure term (0: off; 0.2 usual; needs spacing)",
+                    within(0, 10), Real(0)),
+            termKey("artificial_pressure_n", KeyGroup::kPhysics, "",
+                    "Exponent n of (W_ij/W(dx))^n in the artificial pressure (4 usual)", count(1, 16), 4L)};
+  }
+  static ArtificialPressure fromCase(const CaseConfig& c) {
+    return {termReal(c, "artificial_pressure"), static_cast<int>(termCount(c, "artificial_pressure_n")), c.spacing};
+  }
+  static void validate(const CaseConfig& c) {
+    const Real epsilon = termReal(c, "artificial_pressure");
+    if (epsilon > 0 && !(c.spacing > 0))
+      throw CaseError("artificial_pressure = " + std::to_string(epsilon) +
+                      " needs spacing (> 0): its f_ij = W(r_ij)/W(dx) is relative to the particle spacing dx");
+  }
+  template <class Note>
+  static void noteUnused(const CaseConfig& c, Note&& note) {
+    if (termReal(c, "artificial_pressure") == 0)
+      note("artificial_pressure_n", "artificial_pressure is 0 (off); it applies to artificial_pressure > 0");
+  }
+
+  bool active() const { return epsilon > 0; }
+  FieldSet reads() const { return 0; }  // x, m, rho, p: read by the pressure term already
+
+  template <class Kernel>
+  MonaghanArtificialPressure<Kernel> pairEvaluator(const Kernel& k) const {
+    return {k, epsilon, n, epsilon > 0 ? 1 / k.W(spacing) : 0};
   }
 };
 

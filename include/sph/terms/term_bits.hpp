@@ -31,6 +31,9 @@ enum : unsigned {
   kArtificialPressure = 1u << 21,
   kColourField = 1u << 22,
   kSurfaceTension = 1u << 23,
+  // An optional term that names no bit of its own: this << its index in
+  // the list of terms/optional_terms.hpp (room for 8).
+  kFirstListedTerm = 1u << 24,
 };
 
 }  // namespace sph::term_bits
