@@ -164,7 +164,6 @@ int requestedThreads(const CaseConfig& c) {
 std::vector<std::pair<std::string, std::string>> unusedKeys(const ResolvedCase& c) {
   std::vector<std::pair<std::string, std::string>> unused;
   auto note = [&](const char* key, const std::string& why) { unused.emplace_back(key, why); };
-  const bool seed = !composedModel(c);
   noteUnusedMethodKeys(c, note);  // the keys the methods declare (methods.hpp)
   noteUnusedTermKeys(c, note);  // the keys the optional terms declare
   if (!c.walls) note("restitution", "there are no walls (walls = false)");
