@@ -2,7 +2,8 @@
 // rho_i by summation, then give every particle m = N rho0 / sum_i rho_i, so
 // that the mean summation density equals rho0 exactly. On several MPI ranks
 // N and the sum are every rank's (the halos, filled with unit masses too,
-// give each owned particle its whole sum).
+// give each owned particle its whole sum), the sum added in the order of the
+// ids, so that the mass is the same double on any number of ranks > 1.
 #pragma once
 
 #include "sph/mpi/collectives.hpp"
@@ -20,9 +21,14 @@ Real scaleMassToRestDensity(Particles<D>& P, const NeighbourList<D>& neighbours,
   std::fill(P.m.begin(), P.m.end(), Real(1));
   model.computeDensity(P, neighbours);
   Real sum = 0;
-  for (std::size_t i = 0; i < P.size(); ++i) sum += P.rho[i];  // owned: no ghosts
+  if (comm.size > 1) {
+    sum = mpi::allSumInIdOrder(comm, std::vector<std::int64_t>(P.id.begin(), P.id.begin() + P.size()),
+                               std::vector<Real>(P.rho.begin(), P.rho.begin() + P.size()));
+  } else {
+    for (std::size_t i = 0; i < P.size(); ++i) sum += P.rho[i];  // owned: no ghosts (the seed's order)
+  }
   const auto n = mpi::allSum(comm, static_cast<std::int64_t>(P.size()));
-  const Real m = static_cast<Real>(n) * model.restDensity() / mpi::allSum(comm, sum);
+  const Real m = static_cast<Real>(n) * model.restDensity() / sum;
   std::fill(P.m.begin(), P.m.end(), m);
   return m;
 }

@@ -32,12 +32,22 @@
 // order and every result is bit for bit the stored list's; it trades the
 // list's memory (about 150 bytes per particle in 2D) for a scan of the
 // 3^D cells at every walk.
+//
+// Order by id (`byId`, given on several MPI ranks): each run of a row
+// (fluid neighbours, wall neighbours) is sorted by the neighbours' ids (a
+// periodic image after its source's other images by position at the
+// build). A row then no longer depends on where its particles are stored:
+// on any number of ranks (each its own share and halos, in its own sort)
+// every particle sums its neighbours in the same order, so a run's results
+// are bit for bit the same on 2, 3 or 64 ranks (docs/developer/mpi.md).
+// One rank keeps the grid's order (the seed digests): it is the scan's.
 #pragma once
 
 #include "sph/hash_grid.hpp"
 
 #include <omp.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <vector>
@@ -50,11 +60,14 @@ class NeighbourList {
   // Rows for the owned particles [0, ownedCount): fluid below fluidCount.
   // (Cell walk: nothing is stored; `x` must stay, unchanged, the positions
   // of this build until the next one: the scene passes its list_build_position.)
+  // byId: order each run by these ids (above; nullptr: the scan's order).
   void build(const HashGrid<D>& grid, const std::vector<Vec<D>>& x, Real radius,
-             std::size_t fluidCount = SIZE_MAX, std::size_t ownedCount = SIZE_MAX) {
+             std::size_t fluidCount = SIZE_MAX, std::size_t ownedCount = SIZE_MAX,
+             const std::vector<std::int64_t>* byId = nullptr) {
     const std::size_t n = std::min(ownedCount, x.size());
     fluidCount = std::min(fluidCount, n);
     const bool walls = fluidCount < n || grid.hasWalls();
+    byId_ = byId;
     if (cellWalk_) {
       static std::atomic<std::uint64_t> builds{0};
       cells_.grid = &grid;
@@ -86,14 +99,18 @@ class NeighbourList {
       std::size_t used = 0;
       typename HashGrid<D>::Stencil stencil;
       for (std::size_t i = lo; i < hi; ++i) {
-        begin_[i] = static_cast<std::uint32_t>(used);
+        const std::size_t start = used;
+        begin_[i] = static_cast<std::uint32_t>(start);
         const Vec<D> xi = x[i];
         grid.updateStencil(xi, stencil);
         used = scan(list, used, i, xi, x, radius2, stencil.begin, stencil.end, stencil.count);
+        if (byId) orderById(list.data() + start, list.data() + used, *byId, x);
         if (!walls) continue;
-        wallBegin_[i] = static_cast<std::uint32_t>(used);
+        const std::size_t split = used;
+        wallBegin_[i] = static_cast<std::uint32_t>(split);
         if (i < fluidCount)
           used = scan(list, used, i, xi, x, radius2, stencil.wallBegin, stencil.wallEnd, stencil.wallCount);
+        if (byId) orderById(list.data() + split, list.data() + used, *byId, x);
       }
       used_[t] = used;
       chunkStart_[t] = lo;
@@ -120,6 +137,18 @@ class NeighbourList {
       }
     }
     return used;
+  }
+
+  // Sort the run [first, last) of neighbour indices by (id, position at
+  // the build): the images of one particle share its id.
+  static void orderById(std::uint32_t* first, std::uint32_t* last, const std::vector<std::int64_t>& id,
+                        const std::vector<Vec<D>>& x) {
+    std::sort(first, last, [&](std::uint32_t a, std::uint32_t b) {
+      if (id[a] != id[b]) return id[a] < id[b];
+      for (int d = 0; d < D; ++d)
+        if (x[a][d] != x[b][d]) return x[a][d] < x[b][d];
+      return false;
+    });
   }
 
   // Resize to n with capacity n: a quarter more than the fill is the growth
@@ -208,10 +237,12 @@ class NeighbourList {
     const Vec<D> xi = x[i];
     cells_.grid->updateStencil(xi, s.stencil);
     std::size_t used = scan(s.list, 0, i, xi, x, cells_.radius2, s.stencil.begin, s.stencil.end, s.stencil.count);
+    if (byId_) orderById(s.list.data(), s.list.data() + used, *byId_, x);
     const auto split = static_cast<std::uint32_t>(used);
     if (cells_.walls && i < cells_.fluidCount)
       used = scan(s.list, used, i, xi, x, cells_.radius2, s.stencil.wallBegin, s.stencil.wallEnd,
                   s.stencil.wallCount);
+    if (byId_) orderById(s.list.data() + split, s.list.data() + used, *byId_, x);
     return {s.list.data(), 0, split, static_cast<std::uint32_t>(used)};
   }
 
@@ -243,6 +274,7 @@ class NeighbourList {
   };
   bool cellWalk_ = false;
   CellWalk cells_;
+  const std::vector<std::int64_t>* byId_ = nullptr;  // the last build's (order by id), or nullptr
 
   std::vector<std::vector<std::uint32_t>> chunks_;  // one flat buffer per thread
   std::vector<std::size_t> used_;                   // entries in use per chunk

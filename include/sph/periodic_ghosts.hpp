@@ -150,7 +150,9 @@ class PeriodicGhosts {
 // ghosts' included, in xList (allocated by the scene). halos (a domain
 // decomposition's, mpi/domain_decomposition.hpp; nullptr: one rank): the
 // other ranks' particles near this rank's cells, appended after the
-// periodic ghosts, their send lists following the sort.
+// periodic ghosts, their send lists following the sort; each particle's
+// neighbours then come in the order of their ids (neighbour_list.hpp), so
+// that the results do not depend on the ranks' shares.
 template <int D, class Halos = void>
 void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours, Real radius,
                 PeriodicGhosts<D>* ghosts = nullptr, bool carryAll = false, Halos* halos = nullptr) {
@@ -161,13 +163,16 @@ void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours
   P.permute(grid.order(), carryAll);
   if constexpr (!std::is_void_v<Halos>)
     if (halos) halos->followPermutation(grid.order(), P.size());
+  const std::vector<std::int64_t>* byId = nullptr;
+  if constexpr (!std::is_void_v<Halos>)
+    if (halos) byId = &P.id;
   if (!neighbours.cellWalk()) {
-    neighbours.build(grid, P.x, radius, P.fluidCount(), P.size());
+    neighbours.build(grid, P.x, radius, P.fluidCount(), P.size(), byId);
     return;
   }
   if (P.xList.size() != P.x.size()) throw std::logic_error("sortByCell: a cell walk needs xList allocated");
   std::copy(P.x.begin(), P.x.end(), P.xList.begin());
-  neighbours.build(grid, P.xList, radius, P.fluidCount(), P.size());
+  neighbours.build(grid, P.xList, radius, P.fluidCount(), P.size(), byId);
 }
 
 }  // namespace sph

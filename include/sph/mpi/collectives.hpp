@@ -9,8 +9,12 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace sph::mpi {
 
@@ -43,6 +47,40 @@ inline void allSum(const Communicator& c, double* values, int n) {
 }
 inline void allSum(const Communicator& c, std::int64_t* values, int n) {
   if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_INT64_T, MPI_SUM, c.comm);
+}
+
+// Every rank's `mine`, in rank order, on every rank (T trivially
+// copyable; MPI_Allgatherv of bytes, so at most 2 GiB in all). For data
+// gathered once per run, not per step.
+template <class T>
+std::vector<T> allGather(const Communicator& c, const std::vector<T>& mine) {
+  if (c.size == 1) return mine;
+  const int bytes = static_cast<int>(mine.size() * sizeof(T));
+  std::vector<int> counts(static_cast<std::size_t>(c.size)), displs(static_cast<std::size_t>(c.size));
+  MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, c.comm);
+  long total = 0;
+  for (int r = 0; r < c.size; ++r) displs[r] = static_cast<int>(total), total += counts[r];
+  if (total > INT32_MAX) throw std::runtime_error("mpi::allGather: more than 2 GiB");
+  std::vector<T> all(static_cast<std::size_t>(total) / sizeof(T));
+  MPI_Allgatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(), MPI_BYTE, c.comm);
+  return all;
+}
+
+// The sum of every rank's values, added in the order of their ids (unique
+// over the ranks): the same double however the values are shared out
+// (sum() in any other order differs by round-off). Gathers every value on
+// every rank: for a sum made once per run, not per step.
+inline double allSumInIdOrder(const Communicator& c, const std::vector<std::int64_t>& id,
+                              const std::vector<double>& value) {
+  const std::vector<std::int64_t> ids = allGather(c, id);
+  const std::vector<double> values = allGather(c, value);
+  std::vector<std::pair<std::int64_t, double>> all;
+  all.reserve(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) all.emplace_back(ids[k], values[k]);
+  std::sort(all.begin(), all.end());
+  double sum = 0;
+  for (const auto& iv : all) sum += iv.second;
+  return sum;
 }
 
 // Rank `root`'s text on every rank.
