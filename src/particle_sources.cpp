@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 namespace sph {
@@ -414,28 +415,46 @@ InitialState<D> resumeState(const std::string& snapshot) {
     for (int d = 0; d < D; ++d) v[d] = a[static_cast<std::size_t>(d)];
     return v;
   };
+  // A .pvtp's pieces (a run on several ranks) each list their fluid, then
+  // their walls: all fluid first, each in its piece's order. One .vtp must
+  // already be so.
+  const bool pieces = std::filesystem::path(snapshot).extension() == ".pvtp";
+  auto isWall = [&](std::size_t i) { return !f.kind.empty() && f.kind[i] == kWall; };
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  if (pieces) std::stable_partition(order.begin(), order.end(), [&](std::size_t i) { return !isWall(i); });
   std::size_t fluid = n;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = order[k];
     addParticle(P, vec(f.x[i]), vec(f.v[i]), f.m[i]);
     P.id.back() = f.id[i];
-    const bool wall = !f.kind.empty() && f.kind[i] == kWall;
-    if (wall && fluid == n) fluid = i;
-    if (!wall && fluid < n)
+    if (isWall(i) && fluid == n) fluid = k;
+    if (!isWall(i) && fluid < n)
       throw CaseError("resume: " + snapshot + " lists a fluid particle after a wall particle (not a snapshot sph wrote?)");
   }
   P.resize(n, fluid);
-  for (std::size_t i = 0; i < n; ++i) {
-    P.a[i] = vec(f.a[i]);
-    P.rho[i] = f.rho[i];
+  for (std::size_t k = 0; k < n; ++k) {
+    P.a[k] = vec(f.a[order[k]]);
+    P.rho[k] = f.rho[order[k]];
   }
   // The rates the integrator carries into its next step.
-  if (!f.drho.empty()) P.drho = f.drho;
-  if (!f.colour.empty()) P.colour = f.colour;  // surface tension: the phases as they were
-  if (!f.vXsph.empty())
-    for (const auto& w : f.vXsph) P.vXsph.push_back(vec(w));
-  for (const auto& w : f.vPrev) P.vPrev.push_back(vec(w));  // two-step leap-frog
-  if (!f.rhoPrev.empty()) P.rhoPrev = f.rhoPrev;
-  for (const auto& w : f.xList) P.xList.push_back(vec(w));  // the neighbour list's build (scene.hpp)
+  auto scalars = [&](const std::vector<Real>& from, std::vector<Real>& to) {
+    if (from.empty()) return;
+    to.clear();
+    for (std::size_t k = 0; k < from.size(); ++k) to.push_back(from[order[k]]);
+  };
+  auto vectors = [&](const std::vector<std::array<Real, 3>>& from, std::vector<Vec<D>>& to) {
+    if (from.empty()) return;
+    to.clear();
+    for (std::size_t k = 0; k < from.size(); ++k) to.push_back(vec(from[order[k]]));
+  };
+  scalars(f.drho, P.drho);
+  scalars(f.colour, P.colour);  // surface tension: the phases as they were
+  vectors(f.vXsph, P.vXsph);
+  vectors(f.vPrev, P.vPrev);  // two-step leap-frog
+  scalars(f.rhoPrev, P.rhoPrev);
+  vectors(f.xList, P.xList);  // the neighbour list's build (scene.hpp)
+  s.inSortOrder = !pieces;
   s.massesGiven = true;
   s.startTime = f.time;
   s.startStep = f.step;

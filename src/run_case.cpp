@@ -39,8 +39,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   const mpi::Communicator& comm = mpi::world();
   if (comm.size > 1) {
     std::string refused;
-    if (resuming) refused = "--resume";
-    else if (!c.catalyst.empty()) refused = "--catalyst";
+    if (!c.catalyst.empty()) refused = "--catalyst";
     else if (c.starMass > 0) refused = "star_mass (the toy star)";
     else if (surfaceTensionCurvature(c)) refused = "surface_tension = \"" + c.surfaceTension + "\"";
     if (!refused.empty()) {
@@ -68,10 +67,11 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   const Real resumeTime = init.startTime;
   const long resumeStep = init.startStep;
   const bool massesGiven = init.massesGiven;
+  const bool inSortOrder = init.inSortOrder;
   Scene<D> scene = makeScene<D>(c, std::move(init), startTime);
   scene.setDecomposition(comm);
   try {
-    const auto failure = resuming ? scene.resume(resumeStep, resumeTime) : scene.initialise(!massesGiven);
+    const auto failure = resuming ? scene.resume(resumeStep, resumeTime, inSortOrder) : scene.initialise(!massesGiven);
     if (failure) {
       err << "sph: error: the initial state is not valid: particle id " << failure->id << ": " << failure->detail
           << "\n";
@@ -108,7 +108,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
 
   const std::filesystem::path dir(c.output);
   RunReport report(dir, c, start->previous, resuming, resumeStep, resumeTime, startTime, n,
-                   scene.particles().fluidCount());
+                   scene.globalFluidCount());
   const SnapshotInfo info = snapshotInfo<D>(c, n);
   RunOutput<D> output(dir, c.name, info, report.record(), c.cfl > 0, ProbeFiles<D>(c, makeProbeKernel<D>(c)));
   if (resuming) output.resumeAfter(resumeStep, resumeTime);

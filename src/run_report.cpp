@@ -216,7 +216,7 @@ void RunReport::finish(const Scene<D>& scene, const ResolvedCase& c, const RunTo
       char rate[32];
       std::snprintf(rate, sizeof rate, "%.3g", done > 0 ? static_cast<double>(actions) / static_cast<double>(done) : 0.0);
       out << actions << " times it put a fluid particle back inside the walls (" << rate << " per step, of "
-          << scene.particles().fluidCount() << " fluid particles)\n";
+          << record.fluidParticles << " fluid particles)\n";
     }
   }
   const DensityReinit reinit = methodRow(densityReinitMethods(), "density_reinit", c.densityReinit).make(c);

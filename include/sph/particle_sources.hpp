@@ -24,6 +24,7 @@ struct InitialState {
   bool massesGiven = false;   // masses came from a .vtp: do not rescale
   Real startTime = 0;         // time stored in a .vtp, else 0
   long startStep = 0;         // step stored in a snapshot (resume)
+  bool inSortOrder = true;    // resume: one .vtp, in the order of a one-rank run's sort (not a .pvtp's pieces)
   std::vector<Real> surface;  // generated particles: the top of their body (hydrostatic start)
 };
 

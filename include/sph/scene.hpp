@@ -153,6 +153,10 @@ class Scene {
   std::size_t globalCount() const {
     return static_cast<std::size_t>(mpi::allSum(comm_, static_cast<std::int64_t>(P_.size())));
   }
+  // Fluid particles of all ranks.
+  std::size_t globalFluidCount() const {
+    return static_cast<std::size_t>(mpi::allSum(comm_, static_cast<std::int64_t>(P_.fluidCount())));
+  }
   // Halo particles on this rank (0 on one rank).
   std::size_t haloCount() const { return decomposition_ ? decomposition_->haloCount() : 0; }
   // Make the neighbour list fit the particles' current positions: with no
@@ -189,7 +193,11 @@ class Scene {
   // frog's a was evaluated with the predicted velocity, so re-evaluating it
   // from the snapshot's v would not continue the run bit for bit. The
   // snapshot is in sorted order, so the sort must leave it as it is.
-  std::optional<StateFailure> resume(long step, Real time);
+  // inSortOrder = false (a .pvtp's pieces, or several ranks, where each
+  // rank's share and order are its own sort's): not checked; on several
+  // ranks a particle's sums do not depend on the order (neighbour_list.hpp:
+  // order by id), so the run goes on bit for bit on any number of ranks > 1.
+  std::optional<StateFailure> resume(long step, Real time, bool inSortOrder = true);
 
   // One step; an adaptive dt is cut so that the step ends no later than
   // `landOn` (the next output time).
@@ -245,11 +253,15 @@ class Scene {
   Real skinDistance() const { return skin_ * model_.support(); }
 
   // Sort by cell, wrap and make the ghosts, build the grid and the list;
-  // with a skin, remember the positions of the build.
-  void sort();
+  // with a skin, remember the positions of the build. carryAll: every field
+  // follows its particle, the rates too (always with a skin; resume() on
+  // several ranks, whose particles come with the rates of the snapshot).
+  void sort(bool carryAll = false);
 
   // resume() with a skin: the list of the snapshot's build, at its positions.
-  void rebuildRecordedList();
+  void rebuildRecordedList(bool checkOrder);
+  // The sort of resume() must leave a one-rank snapshot in its order.
+  void checkResumeOrder(const char* where) const;
 
 
   // Every owned particle within half the skin of its position at the last
@@ -375,7 +387,7 @@ std::optional<StateFailure> Scene<D>::initialise(bool scaleMass) {
 }
 
 template <int D>
-std::optional<StateFailure> Scene<D>::resume(long step, Real time) {
+std::optional<StateFailure> Scene<D>::resume(long step, Real time, bool inSortOrder) {
   step_ = step;
   time_ = time;
   if (step > 0)
@@ -385,14 +397,12 @@ std::optional<StateFailure> Scene<D>::resume(long step, Real time) {
                                  std::visit([](const auto& i) { return std::string(i.name); }, integrator_) +
                                  " carries from step to step (written with another integrator? resume with the "
                                  "run's own integrator)");
+  const bool checkOrder = inSortOrder && !decomposition_;
   if (skin_ > 0) {
-    rebuildRecordedList();
+    rebuildRecordedList(checkOrder);
   } else {
-    sort();
-    const auto& order = grid_.order();
-    for (std::size_t k = 0; k < P_.size(); ++k)
-      if (order[k] != k)
-        throw std::runtime_error("the snapshot is not in the order sph keeps its particles (written by another program?)");
+    sort(/*carryAll=*/decomposition_ != nullptr);  // one rank: the sort must not move them
+    if (checkOrder) checkResumeOrder("");
   }
   model_.refreshCspmMatrices(P_, neighbours_);
   return finishStep([](std::size_t) {});
@@ -458,43 +468,58 @@ Energy Scene<D>::energy() const {
 }
 
 template <int D>
-void Scene<D>::sort() {
+void Scene<D>::sort(bool carryAll) {
   if (decomposition_) {
     // Wrapped first: a particle goes to the owner of its place in the box.
     if (ghosts_) ghosts_->wrap(P_);
     if (sortsSinceBalance_++ % kRebalanceEvery == 0) decomposition_->balance(P_);
     decomposition_->migrate(P_);
   }
-  sortByCell(P_, grid_, neighbours_, listRadius_, ghosts_ ? &*ghosts_ : nullptr, skin_ > 0, decomposition_.get());
+  sortByCell(P_, grid_, neighbours_, listRadius_, ghosts_ ? &*ghosts_ : nullptr, carryAll || skin_ > 0,
+             decomposition_.get());
   ++listBuilds_;
   // (A cell walk had sortByCell copy them already, the ghosts' included.)
   if (skin_ > 0 && !neighbours_.cellWalk()) std::copy(P_.x.begin(), P_.x.begin() + static_cast<std::ptrdiff_t>(P_.size()), P_.xList.begin());
 }
 
+template <int D>
+void Scene<D>::checkResumeOrder(const char* where) const {
+  const auto& order = grid_.order();
+  for (std::size_t k = 0; k < P_.size(); ++k)
+    if (order[k] != k)
+      throw std::runtime_error(std::string("the snapshot is not in the order sph keeps its particles") + where +
+                               " (written by another program?)");
+}
+
 // The snapshot holds the particles in the order of the last build and, in
 // xList, where they were then: sorting them at those positions again must
-// leave them in place (else the snapshot is not one sph wrote), and builds
-// the same ghosts, grid and list. Then back to the current positions. A
-// snapshot without the record (all zero: written with no skin) gets a list
-// at its current positions.
+// leave them in place (else the snapshot is not one sph wrote; checkOrder,
+// one rank), and builds the same ghosts, grid and list. Then back to the
+// current positions, found by id (on several ranks the sort migrates the
+// particles). A snapshot without the record (all zero: written with no skin)
+// gets a list at its current positions.
 template <int D>
-void Scene<D>::rebuildRecordedList() {
-  const std::size_t n = P_.size();
-  const auto owned = static_cast<std::ptrdiff_t>(n);
+void Scene<D>::rebuildRecordedList(bool checkOrder) {
+  const auto owned = static_cast<std::ptrdiff_t>(P_.size());
   if (!listRecorded_) {
     sort();
     return;
   }
-  std::vector<Vec<D>> now(P_.x.begin(), P_.x.begin() + owned);  // once, at the start
+  // Every rank's (id, position): the sort may give this rank others' particles.
+  std::vector<std::pair<std::int64_t, Vec<D>>> now;  // once, at the start
+  now.reserve(P_.size());
+  for (std::size_t i = 0; i < P_.size(); ++i) now.emplace_back(P_.id[i], P_.x[i]);
+  now = mpi::allGather(comm_, now);
+  std::sort(now.begin(), now.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::copy(P_.xList.begin(), P_.xList.begin() + owned, P_.x.begin());
   sort();
-  const auto& order = grid_.order();
-  for (std::size_t k = 0; k < n; ++k)
-    if (order[k] != k)
-      throw std::runtime_error(
-          "the snapshot is not in the order sph keeps its particles at its list_build_position (written by another "
-          "program?)");
-  std::copy(now.begin(), now.end(), P_.x.begin());
+  if (checkOrder) checkResumeOrder(" at its list_build_position");
+  for (std::size_t i = 0; i < P_.size(); ++i) {
+    const auto it = std::lower_bound(now.begin(), now.end(), P_.id[i],
+                                     [](const auto& a, std::int64_t id) { return a.first < id; });
+    if (it == now.end() || it->first != P_.id[i]) throw std::logic_error("Scene::rebuildRecordedList: a particle lost");
+    P_.x[i] = it->second;
+  }
   P_.refreshGhosts(fieldBit(kFieldX));
 }
 
