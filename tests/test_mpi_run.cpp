@@ -147,8 +147,8 @@ void compareCsv(const std::filesystem::path& a, const std::filesystem::path& b) 
 
 // The case on one rank and on each R: the same snapshot times, the same
 // particles by id with the same masses, positions and velocities within
-// the bound above; run.json records the ranks.
-void compareWithOneRank(const std::string& caseName, const std::string& end, const std::vector<int>& rankCounts,
+// the bound above; run.json records the ranks. Returns the R-rank runs' folders.
+std::vector<std::filesystem::path> compareWithOneRank(const std::string& caseName, const std::string& end, const std::vector<int>& rankCounts,
                         const std::vector<std::string>& extra = {}) {
   const auto one = sph::test::scratchDir(caseName + "_1");
   const auto r1 = sph::test::runSph(runArgs(caseName, one, end, extra));
@@ -158,9 +158,11 @@ void compareWithOneRank(const std::string& caseName, const std::string& end, con
   BOOST_REQUIRE(files1.size() >= 2u);
   const auto reference = byId(sph::readVtp((one / files1.back()).string()));
   std::filesystem::path firstOnRanks;  // the run on the first R
+  std::vector<std::filesystem::path> dirs;
   for (int R : rankCounts) {
     BOOST_TEST_CONTEXT(caseName << " on " << R << " ranks") {
       const auto dir = sph::test::scratchDir(caseName + "_" + std::to_string(R));
+      dirs.push_back(dir);
       const auto r = runRanks(R, runArgs(caseName, dir, end, extra));
       BOOST_REQUIRE_MESSAGE(r.exitCode == 0, r.output);
       const auto files = seriesFiles(dir / (name + ".pvd"));
@@ -209,6 +211,7 @@ void compareWithOneRank(const std::string& caseName, const std::string& end, con
       else compareSeriesBitwise(firstOnRanks, dir, name);
     }
   }
+  return dirs;
 }
 
 }  // namespace
@@ -229,6 +232,32 @@ BOOST_AUTO_TEST_CASE(periodic_channels_and_vortices_on_ranks) {
   compareWithOneRank("poiseuille_3d", "0.02", {3});
   compareWithOneRank("taylor_green_2d", "0.05", {2, 4});
   compareWithOneRank("taylor_green_2d", "0.05", {3}, {"--integrator", "rk4", "--xsph", "0.5"});
+}
+
+// An obstacle (a box of wall particles on the floor) cut by a rank
+// boundary: on 2 and 4 ranks two pieces each hold part of it (checked, so
+// that a change of the cut cannot make this test pass without cutting it).
+BOOST_AUTO_TEST_CASE(an_obstacle_cut_by_a_rank_boundary) {
+  const std::vector<int> ranks = {2, 4};
+  const auto dirs = compareWithOneRank("dam_break_obstacle", "0.03", ranks);
+  BOOST_REQUIRE(dirs.size() == ranks.size());
+  for (std::size_t run = 0; run < ranks.size(); ++run) {
+    const auto& dir = dirs[run];
+    const int R = ranks[run];
+    int holding = 0;
+    std::size_t obstacle = 0;
+    for (int r = 0; r < R; ++r) {
+      const auto piece = sph::readVtp((dir / ("dam_break_obstacle_00003_" + std::to_string(r) + ".vtp")).string());
+      std::size_t here = 0;
+      for (std::size_t k = 0; k < piece.id.size(); ++k)  // the box: x in [0.8, 0.9], y in [0, 0.06] (the case)
+        here += piece.kind.at(k) == 1 && piece.x[k][0] >= 0.8 && piece.x[k][0] <= 0.9 && piece.x[k][1] >= 0 &&
+                piece.x[k][1] <= 0.06;
+      holding += here > 0;
+      obstacle += here;
+    }
+    BOOST_TEST(holding >= 2, R << " ranks: the obstacle lies in " << holding << " piece(s)");
+    BOOST_TEST(obstacle > 0u);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(hydrostatic_tank_3d_on_2_ranks) { compareWithOneRank("hydrostatic_tank_3d", "0.02", {2}); }
@@ -308,6 +337,34 @@ BOOST_AUTO_TEST_CASE(a_run_resumed_on_another_number_of_ranks_goes_on) {
   resumeOnOtherRanks("dam_break", "0.02", "0.04", 3, {});
   resumeOnOtherRanks("poiseuille_2d", "0.02", "0.04", 4, {"--neighbour_skin", "0", "--output_interval", "0.01"});
   resumeOnOtherRanks("dam_break", "0.02", "0.04", 1, {});
+}
+
+// SIGTERM to one rank (not mpirun, not rank 0) once the series has begun:
+// every rank stops after the step within the time limit, exit 143 (128 +
+// SIGTERM), the cause printed, the series readable with every particle in
+// every snapshot, no temporary file left; then it resumes on 3 ranks.
+BOOST_AUTO_TEST_CASE(sigterm_to_one_rank_stops_every_rank) {
+  const auto dir = sph::test::scratchDir("sigterm_rank");
+  std::string run = "timeout 300 '" + std::string(MPIEXEC) + "' --oversubscribe --allow-run-as-root -n 2 '" +
+                    SPH_EXECUTABLE + "'";
+  for (const auto& a : runArgs("dam_break", dir, "5")) run += " '" + a + "'";
+  // The ranks' command lines begin with the executable (mpirun's and timeout's do not).
+  const std::string script = "{ " + run + " & job=$!; for i in $(seq 1200); do [ -e '" +
+                             (dir / "dam_break_00002.pvtp").string() +
+                             "' ] && break; sleep 0.1; done; kill -TERM $(pgrep -n -f \"^" + SPH_EXECUTABLE +
+                             " run .*" + dir.string() + "\"); wait $job; }";
+  const auto r = sph::test::runCommandLine(script);
+  BOOST_TEST(r.exitCode == 143, r.output);
+  BOOST_TEST(r.output.find("stopped by SIGTERM") != std::string::npos, r.output);
+  const auto files = seriesFiles(dir / "dam_break.pvd");
+  BOOST_TEST(files.size() >= 3u);
+  for (const auto& f : files) BOOST_TEST(sph::readVtp((dir / f).string()).id.size() == 2468u, f);
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    BOOST_TEST(entry.path().extension() != ".tmp", "left behind " << entry.path());
+  const auto last = sph::readVtp((dir / files.back()).string());
+  const auto resumed = runRanks(3, {"run", "--resume", dir.string(), "--end_time",
+                                    std::to_string(last.time + 0.005), "--no-progress"});
+  BOOST_TEST(resumed.exitCode == 0, resumed.output);
 }
 
 // Not wired for ranks yet: one line, exit 2, nothing written.
