@@ -220,6 +220,11 @@ const std::vector<KeySpec>& caseKeys() {
        "pass) or cells (no stored list: the grid's cells scanned again at every visit, about 150 bytes per "
        "particle less in 2D, slower); the same pairs in the same order, so the same results",
        {}, nullptr, neighbourWalkNames},
+      {"rebalance_tolerance", G::kNumerics, &C::rebalanceTolerance, "",
+       "On several MPI ranks: the particles are shared out again (along the Morton curve, weighted by each "
+       "particle's work: 1 + its neighbours) at the next list build when the busiest rank's work exceeds the "
+       "mean by more than this fraction; no effect on the results, only on the speed",
+       within(0.001, 100), "0.1", nullptr},
       {"regime_check", G::kNumerics, &C::regimeCheck, "",
        "Every 10 steps and before every snapshot: Mach number above 1, a Tait fluid 10% above rho0, the fluid "
        "breaking up (over half its particles alone), particles collapsing (4x the neighbours), pairing (a "

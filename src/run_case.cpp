@@ -69,7 +69,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   const bool massesGiven = init.massesGiven;
   const bool inSortOrder = init.inSortOrder;
   Scene<D> scene = makeScene<D>(c, std::move(init), startTime);
-  scene.setDecomposition(comm);
+  scene.setDecomposition(comm, c.rebalanceTolerance);
   try {
     const auto failure = resuming ? scene.resume(resumeStep, resumeTime, inSortOrder) : scene.initialise(!massesGiven);
     if (failure) {

@@ -58,6 +58,10 @@ void writeRunRecord(const std::filesystem::path& dir, const RunRecord& r) {
   json seconds = json::object();
   for (const auto& [count, s] : r.threadSeconds) seconds[std::to_string(count)] = s;
   j["ranks"] = r.ranks;
+  if (r.ranks > 1) {
+    j["balances"] = r.balances;
+    j["work_imbalance"] = r.workImbalance;
+  }
   j["threads"] = {{"asked", r.threadMode}, {"used", r.threadsUsed}, {"stepping_seconds", seconds}};
   j["started"] = r.started;
   j["ended"] = r.ended;
@@ -105,6 +109,8 @@ RunRecord readRunRecord(const std::filesystem::path& dir) {
     for (const auto& [k, v] : j.at("case").items()) r.caseValues[k] = v.is_null() ? "" : v.dump();
     r.given = j.at("given_keys").get<std::vector<std::string>>();
     r.ranks = j.value("ranks", 1);  // (absent in runs written before MPI)
+    r.balances = j.value("balances", 0L);
+    r.workImbalance = j.value("work_imbalance", 0.0);
     r.threadMode = j.at("threads").at("asked").get<std::string>();
     r.threadsUsed = j.at("threads").at("used").get<std::vector<int>>();
     for (const auto& [count, s] : j.at("threads").at("stepping_seconds").items())

@@ -166,6 +166,8 @@ void RunReport::finish(const Scene<D>& scene, const ResolvedCase& c, const RunTo
   record.particleStepsPerSecond =
       stepSeconds > 0 ? static_cast<double>(n) * static_cast<double>(done) / stepSeconds : 0;
   record.neighboursPerParticle = scene.meanNeighbours();
+  record.balances = scene.balances();
+  record.workImbalance = scene.workImbalance();
   record.bytesPerParticle = static_cast<double>(scene.bytesAllocated()) / static_cast<double>(n);
   for (const auto& [name, count] : dtStats.criteria) record.dtCriteria[name] += count;
   if (dtStats.steps() > 0) {
@@ -198,6 +200,13 @@ void RunReport::finish(const Scene<D>& scene, const ResolvedCase& c, const RunTo
                 threadsText(tuner, autoThreads, stepSeconds).c_str(), scene.meanNeighbours(),
                 output.seriesPath().c_str(), output.count());
   out << buf;
+  if (record.ranks > 1) {
+    std::snprintf(buf, sizeof buf,
+                  "  ranks            %d (the busiest's work %.3f x the mean at the last list build; the particles "
+                  "shared out %ld time(s), rebalance_tolerance %s)\n",
+                  record.ranks, record.workImbalance, record.balances, shortestDecimal(c.rebalanceTolerance).c_str());
+    out << buf;
+  }
   // The kernel corrections: what they did in this process (a resumed
   // run counts from its resume).
   const CorrectionCounts& cc = scene.model().correctionCounts();

@@ -128,6 +128,10 @@ struct CaseConfig {
   Real neighbourSkin = 0;
   std::string neighbourWalk = "list";  // list | cells
 
+  // several MPI ranks (sph/scene.hpp): share the particles out again when the
+  // busiest rank's work exceeds the mean by more than this fraction
+  Real rebalanceTolerance = 0.1;
+
   // regime check (sph/regime_check.hpp): stop | warn | off
   std::string regimeCheck = "stop";
 

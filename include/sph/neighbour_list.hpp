@@ -191,6 +191,12 @@ class NeighbourList {
   // copy or a move of the list).
   bool bound() const { return !cellWalk_ || cells_.grid != nullptr; }
 
+  // The neighbours of particle i (fluid and walls).
+  std::uint32_t rowLength(std::size_t i) const {
+    const Run r = run(i);
+    return r.end - r.begin;
+  }
+
   std::size_t pairCount() const {
     std::size_t total = 0;
     if (cellWalk_) {

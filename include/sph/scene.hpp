@@ -134,20 +134,28 @@ class Scene {
   // Run on the ranks of `comm` (R > 1; with one rank nothing changes): keep
   // this rank's share of the particles (every rank built the same), and
   // from the first sort on, own the particles of this rank's cells
-  // (mpi/domain_decomposition.hpp: migrated at every sort, rebalanced every
-  // kRebalanceEvery sorts) with the halo of other ranks' particles within
-  // the list's radius, refreshed wherever the ghosts are. The reductions of
-  // a step (time step, state check, skin, energy, counts) span the ranks.
+  // (mpi/domain_decomposition.hpp: migrated at every sort) with the halo of
+  // other ranks' particles within the list's radius, refreshed wherever the
+  // ghosts are. The cells are shared out by particle count at the first
+  // sort, then again, weighted by each particle's work (1 + its neighbours
+  // at the last build), at any sort where the busiest rank's work exceeds
+  // the mean by more than `tolerance` (rebalance_tolerance). The reductions
+  // of a step (time step, state check, skin, energy, counts) span the ranks.
   // Call before initialise().
-  void setDecomposition(const mpi::Communicator& comm) {
+  void setDecomposition(const mpi::Communicator& comm, Real tolerance = 0.1) {
     if (comm.size == 1) return;
     comm_ = comm;
+    rebalanceTolerance_ = tolerance;
     decomposition_ = std::make_unique<mpi::DomainDecomposition<D>>(comm, listRadius_);
     decomposition_->keepShare(P_);
     if (shifting_) shifting_->shifting.setCommunicator(comm);
     P_.setRemoteRefresh(&mpi::DomainDecomposition<D>::refreshRemote, decomposition_.get());
   }
-  static constexpr long kRebalanceEvery = 20;
+  // Several ranks: the busiest rank's work over the mean at the last sort
+  // (1: even; 0 before the first list or on one rank), and how many times
+  // the particles were shared out (the first sort's included).
+  Real workImbalance() const { return workImbalance_; }
+  long balances() const { return balances_; }
   const mpi::Communicator& communicator() const { return comm_; }
   // Particles of all ranks, fluid and walls (this rank's: particles().size()).
   std::size_t globalCount() const {
@@ -260,6 +268,9 @@ class Scene {
 
   // resume() with a skin: the list of the snapshot's build, at its positions.
   void rebuildRecordedList(bool checkOrder);
+  // Several ranks: whether the work per rank is uneven enough to share the
+  // particles out again (measured from the last build: work_).
+  bool workIsUneven();
   // The sort of resume() must leave a one-rank snapshot in its order.
   void checkResumeOrder(const char* where) const;
 
@@ -353,7 +364,10 @@ class Scene {
   std::optional<PeriodicGhosts<D>> ghosts_;
   mpi::Communicator comm_;  // the ranks of the run ({self, 0, 1}: one)
   std::unique_ptr<mpi::DomainDecomposition<D>> decomposition_;  // R > 1 only
-  long sortsSinceBalance_ = 0;
+  Real rebalanceTolerance_ = 0.1;
+  Real workImbalance_ = 0;
+  long balances_ = 0;
+  std::vector<Real> work_;  // per owned particle: 1 + its neighbours at the last build
   std::optional<ShiftingPass<D>> shifting_;
   std::optional<WallMotionPass<D>> wallMotion_;
   long guardActions_ = 0;
@@ -470,9 +484,13 @@ Energy Scene<D>::energy() const {
 template <int D>
 void Scene<D>::sort(bool carryAll) {
   if (decomposition_) {
+    const bool uneven = workIsUneven();
     // Wrapped first: a particle goes to the owner of its place in the box.
     if (ghosts_) ghosts_->wrap(P_);
-    if (sortsSinceBalance_++ % kRebalanceEvery == 0) decomposition_->balance(P_);
+    if (uneven) {
+      decomposition_->balance(P_, listBuilds_ > 0 ? &work_ : nullptr);
+      ++balances_;
+    }
     decomposition_->migrate(P_);
   }
   sortByCell(P_, grid_, neighbours_, listRadius_, ghosts_ ? &*ghosts_ : nullptr, carryAll || skin_ > 0,
@@ -480,6 +498,22 @@ void Scene<D>::sort(bool carryAll) {
   ++listBuilds_;
   // (A cell walk had sortByCell copy them already, the ghosts' included.)
   if (skin_ > 0 && !neighbours_.cellWalk()) std::copy(P_.x.begin(), P_.x.begin() + static_cast<std::ptrdiff_t>(P_.size()), P_.xList.begin());
+}
+
+// Every sort on several ranks, before anything moves: the particles are
+// still those of the last build, in its order, so the list gives each its
+// work, 1 + its neighbours (the pairs the passes visit, plus what a
+// particle costs alone). Two reductions of one number each.
+template <int D>
+bool Scene<D>::workIsUneven() {
+  if (listBuilds_ == 0) return true;  // the first sort: shared out by count
+  const std::size_t n = P_.size();
+  work_.resize(n);
+  Real mine = 0;
+  for (std::size_t i = 0; i < n; ++i) mine += work_[i] = Real(1) + static_cast<Real>(neighbours_.rowLength(i));
+  const Real most = mpi::allMax(comm_, mine), sum = mpi::allSum(comm_, mine);
+  workImbalance_ = sum > 0 ? most * static_cast<Real>(comm_.size) / sum : 1;
+  return workImbalance_ > 1 + rebalanceTolerance_;
 }
 
 template <int D>

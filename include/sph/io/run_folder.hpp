@@ -38,6 +38,8 @@ struct RunRecord {
   std::string version, gitCommit;
   int dimension = 2;
   int ranks = 1;  // MPI ranks of the run (the last process's)
+  long balances = 0;         // several ranks: times the particles were shared out (the last process's)
+  double workImbalance = 0;  // several ranks: the busiest rank's work over the mean at the last sort
   std::string model;
   // how it ran
   std::string threadMode;              // "auto" or the count asked for
