@@ -159,7 +159,8 @@ def t_snapshot(e):
 
 def t_ranks(e):
     """A run on 2 MPI ranks (a .pvtp and a piece per rank per snapshot):
-    the on-the-fly view and the water2d state render it."""
+    the on-the-fly view and the water2d state render it; resumed on one
+    rank (a series of .pvtp, then .vtp), the state renders its last time."""
     e.need_tools()
     mpirun = shutil.which("mpirun")
     if not mpirun:
@@ -180,6 +181,14 @@ def t_ranks(e):
     e.render([run_dir, "--state", state, "--time", "0", "--size"] + SIZE +
              ["--output", first])
     e.check(first, "--size", *SIZE, "--centroid-box", "0", "0", "0.5", "0.5")
+    # Resumed on one rank: the series mixes .pvtp and .vtp snapshots.
+    run([e.a.sph, "run", "--resume", run_dir, "--end_time", "0.02"])
+    if not [f for f in os.listdir(run_dir) if f.endswith(".vtp") and f.count("_") == 2]:
+        raise TestFailure("expected a one-rank .vtp after the resume, got %s" % sorted(os.listdir(run_dir)))
+    last = os.path.join(e.work, "resumed.png")
+    e.render([run_dir, "--state", state, "--time", "0.02", "--size"] + SIZE +
+             ["--output", last])
+    e.check(last, "--size", *SIZE, "--centroid-box", "0", "0", "0.5", "0.5")
 
 
 def state_case(state):
