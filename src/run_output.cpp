@@ -9,6 +9,7 @@
 #include "sph/scene.hpp"
 #include "sph/toy_star.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -152,11 +153,41 @@ void RunOutput<D>::writeLog(const std::string& file, std::string& text) {
   }
 }
 
+namespace {
+
+// Every rank's particles (x, m, rho) in one Particles on every rank, in the
+// order of their ids: the profile's sums are then the same on any number of
+// ranks > 1. Once, at the end of a run.
+template <int D>
+Particles<D> gatherInIdOrder(const Particles<D>& P, const mpi::Communicator& comm) {
+  const auto owned = static_cast<std::ptrdiff_t>(P.size());
+  const auto id = mpi::allGather(comm, std::vector<std::int64_t>(P.id.begin(), P.id.begin() + owned));
+  const auto x = mpi::allGather(comm, std::vector<Vec<D>>(P.x.begin(), P.x.begin() + owned));
+  const auto m = mpi::allGather(comm, std::vector<Real>(P.m.begin(), P.m.begin() + owned));
+  const auto rho = mpi::allGather(comm, std::vector<Real>(P.rho.begin(), P.rho.begin() + owned));
+  std::vector<std::size_t> order(id.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  Particles<D> all;
+  for (std::size_t k : order) {
+    all.x.push_back(x[k]);
+    all.m.push_back(m[k]);
+    all.id.push_back(id[k]);
+  }
+  all.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) all.rho[k] = rho[order[k]];
+  return all;
+}
+
+}  // namespace
+
 template <int D>
 void writeStarProfiles(const Scene<D>& scene, const CaseConfig& c, const std::filesystem::path& dir,
                        std::ostream& out, RunRecord& record) {
   const Real lambda = starLambda(c);
-  const auto& P = scene.particles();
+  const mpi::Communicator& comm = scene.communicator();
+  const Particles<D> gathered = comm.size > 1 ? gatherInIdOrder(scene.particles(), comm) : Particles<D>();
+  const auto& P = comm.size > 1 ? gathered : scene.particles();
   Vec<D> centre = Vec<D>::Zero();
   Real mass = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
@@ -172,7 +203,7 @@ void writeStarProfiles(const Scene<D>& scene, const CaseConfig& c, const std::fi
                   prof.count[b]);
     csv += line;
   }
-  writeFileAtomically((dir / "star_profile.csv").string(), csv);
+  if (comm.rank == 0) writeFileAtomically((dir / "star_profile.csv").string(), csv);
   record.addFile("star_profile.csv");
   std::snprintf(line, sizeof line,
                 "  toy star         relative L2 density error inside 0.9 R: %.4f (%zu particles "
