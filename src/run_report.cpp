@@ -202,7 +202,7 @@ void RunReport::finish(const Scene<D>& scene, const ResolvedCase& c, const RunTo
   out << buf;
   if (record.ranks > 1) {
     std::snprintf(buf, sizeof buf,
-                  "  ranks            %d (the busiest's work %.3f x the mean at the last list build; the particles "
+                  "  ranks            %d (the busiest's work %.3f x the mean at the end; the particles "
                   "shared out %ld time(s), rebalance_tolerance %s)\n",
                   record.ranks, record.workImbalance, record.balances, shortestDecimal(c.rebalanceTolerance).c_str());
     out << buf;

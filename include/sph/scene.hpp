@@ -151,10 +151,10 @@ class Scene {
     if (shifting_) shifting_->shifting.setCommunicator(comm);
     P_.setRemoteRefresh(&mpi::DomainDecomposition<D>::refreshRemote, decomposition_.get());
   }
-  // Several ranks: the busiest rank's work over the mean at the last sort
-  // (1: even; 0 before the first list or on one rank), and how many times
-  // the particles were shared out (the first sort's included).
-  Real workImbalance() const { return workImbalance_; }
+  // Several ranks: the busiest rank's work over the mean in the current
+  // list (1: even; 1 on one rank; collective), and how many times the
+  // particles were shared out (the first sort's included).
+  Real workImbalance() const { return decomposition_ && listBuilds_ > 0 ? measureWork() : 1; }
   long balances() const { return balances_; }
   const mpi::Communicator& communicator() const { return comm_; }
   // Particles of all ranks, fluid and walls (this rank's: particles().size()).
@@ -271,6 +271,9 @@ class Scene {
   // Several ranks: whether the work per rank is uneven enough to share the
   // particles out again (measured from the last build: work_).
   bool workIsUneven();
+  // work_ from the current list; returns the busiest rank's sum over the
+  // mean (collective).
+  Real measureWork() const;
   // The sort of resume() must leave a one-rank snapshot in its order.
   void checkResumeOrder(const char* where) const;
 
@@ -365,9 +368,8 @@ class Scene {
   mpi::Communicator comm_;  // the ranks of the run ({self, 0, 1}: one)
   std::unique_ptr<mpi::DomainDecomposition<D>> decomposition_;  // R > 1 only
   Real rebalanceTolerance_ = 0.1;
-  Real workImbalance_ = 0;
   long balances_ = 0;
-  std::vector<Real> work_;  // per owned particle: 1 + its neighbours at the last build
+  mutable std::vector<Real> work_;  // scratch, per owned particle: 1 + its neighbours at the last build
   std::optional<ShiftingPass<D>> shifting_;
   std::optional<WallMotionPass<D>> wallMotion_;
   long guardActions_ = 0;
@@ -507,13 +509,17 @@ void Scene<D>::sort(bool carryAll) {
 template <int D>
 bool Scene<D>::workIsUneven() {
   if (listBuilds_ == 0) return true;  // the first sort: shared out by count
+  return measureWork() > 1 + rebalanceTolerance_;
+}
+
+template <int D>
+Real Scene<D>::measureWork() const {
   const std::size_t n = P_.size();
   work_.resize(n);
   Real mine = 0;
   for (std::size_t i = 0; i < n; ++i) mine += work_[i] = Real(1) + static_cast<Real>(neighbours_.rowLength(i));
   const Real most = mpi::allMax(comm_, mine), sum = mpi::allSum(comm_, mine);
-  workImbalance_ = sum > 0 ? most * static_cast<Real>(comm_.size) / sum : 1;
-  return workImbalance_ > 1 + rebalanceTolerance_;
+  return sum > 0 ? most * static_cast<Real>(comm_.size) / sum : 1;
 }
 
 template <int D>
