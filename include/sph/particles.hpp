@@ -217,13 +217,17 @@ struct Particles : FieldArrays<D> {
 
   // Drop the ghosts and make the owned particles n, with walls from
   // `fluidCount` on: every allocated field keeps its first n entries (new
-  // ones zero) and its capacity. The caller fills the fields (migration
-  // between MPI ranks, mpi/domain_decomposition.hpp).
+  // ones zero) and its capacity; when it needs more room, an eighth more
+  // than n (not the vector's doubling: a migration moves a few particles at
+  // each sort). The caller fills the fields (migration between MPI ranks,
+  // mpi/domain_decomposition.hpp).
   void resizeOwned(std::size_t n, std::size_t fluidCount) {
     clearGhosts();
     this->forEachField([&](const FieldInfo& info, auto& field) {
       using Field = std::decay_t<decltype(field)>;
-      if ((allocated_ >> info.id) & 1u) field.resize(n, FieldArrays<D>::template zero<typename Field::value_type>());
+      if (((allocated_ >> info.id) & 1u) == 0) return;
+      if (n > field.capacity()) field.reserve(n + n / 8 + 16);
+      field.resize(n, FieldArrays<D>::template zero<typename Field::value_type>());
     });
     fluid_ = std::min(fluidCount, n);
   }

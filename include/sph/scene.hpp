@@ -148,6 +148,7 @@ class Scene {
     rebalanceTolerance_ = tolerance;
     decomposition_ = std::make_unique<mpi::DomainDecomposition<D>>(comm, listRadius_);
     decomposition_->keepShare(P_);
+    P_.allocate(P_.allocated());  // give back the room the other ranks' particles took (the same fields)
     if (shifting_) shifting_->shifting.setCommunicator(comm);
     P_.setRemoteRefresh(&mpi::DomainDecomposition<D>::refreshRemote, decomposition_.get());
   }
