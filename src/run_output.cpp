@@ -9,7 +9,6 @@
 #include "sph/scene.hpp"
 #include "sph/toy_star.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -160,23 +159,22 @@ namespace {
 // ranks > 1. Once, at the end of a run.
 template <int D>
 Particles<D> gatherInIdOrder(const Particles<D>& P, const mpi::Communicator& comm) {
-  const auto owned = static_cast<std::ptrdiff_t>(P.size());
-  const auto id = mpi::allGather(comm, std::vector<std::int64_t>(P.id.begin(), P.id.begin() + owned));
-  const auto x = mpi::allGather(comm, std::vector<Vec<D>>(P.x.begin(), P.x.begin() + owned));
-  const auto m = mpi::allGather(comm, std::vector<Real>(P.m.begin(), P.m.begin() + owned));
-  const auto rho = mpi::allGather(comm, std::vector<Real>(P.rho.begin(), P.rho.begin() + owned));
-  std::vector<std::size_t> order(id.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
-  Particles<D> all;
-  for (std::size_t k : order) {
-    all.x.push_back(x[k]);
-    all.m.push_back(m[k]);
-    all.id.push_back(id[k]);
+  struct Record {
+    Vec<D> x;
+    Real m, rho;
+  };
+  std::vector<mpi::ById<Record>> mine(P.size());
+  for (std::size_t i = 0; i < P.size(); ++i) mine[i] = {P.id[i], {P.x[i], P.m[i], P.rho[i]}};
+  const auto all = mpi::allGatherById(comm, mine);
+  Particles<D> gathered;
+  for (const auto& r : all) {
+    gathered.x.push_back(r.value.x);
+    gathered.m.push_back(r.value.m);
+    gathered.id.push_back(r.id);
   }
-  all.resize(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) all.rho[k] = rho[order[k]];
-  return all;
+  gathered.resize(all.size());
+  for (std::size_t k = 0; k < all.size(); ++k) gathered.rho[k] = all[k].value.rho;
+  return gathered;
 }
 
 }  // namespace

@@ -22,8 +22,9 @@ Real scaleMassToRestDensity(Particles<D>& P, const NeighbourList<D>& neighbours,
   model.computeDensity(P, neighbours);
   Real sum = 0;
   if (comm.size > 1) {
-    sum = mpi::allSumInIdOrder(comm, std::vector<std::int64_t>(P.id.begin(), P.id.begin() + P.size()),
-                               std::vector<Real>(P.rho.begin(), P.rho.begin() + P.size()));
+    std::vector<mpi::ById<Real>> mine(P.size());
+    for (std::size_t i = 0; i < P.size(); ++i) mine[i] = {P.id[i], P.rho[i]};
+    for (const auto& r : mpi::allGatherById(comm, mine)) sum += r.value;
   } else {
     for (std::size_t i = 0; i < P.size(); ++i) sum += P.rho[i];  // owned: no ghosts (the seed's order)
   }

@@ -142,7 +142,7 @@ class Scene {
   // the mean by more than `tolerance` (rebalance_tolerance). The reductions
   // of a step (time step, state check, skin, energy, counts) span the ranks.
   // Call before initialise().
-  void setDecomposition(const mpi::Communicator& comm, Real tolerance = 0.1) {
+  void setDecomposition(const mpi::Communicator& comm, Real tolerance) {
     if (comm.size == 1) return;
     comm_ = comm;
     rebalanceTolerance_ = tolerance;
@@ -263,8 +263,8 @@ class Scene {
 
   // Sort by cell, wrap and make the ghosts, build the grid and the list;
   // with a skin, remember the positions of the build. carryAll: every field
-  // follows its particle, the rates too (always with a skin; resume() on
-  // several ranks, whose particles come with the rates of the snapshot).
+  // follows its particle, the rates too (always with a skin; resume(),
+  // whose particles come with the rates of the snapshot).
   void sort(bool carryAll = false);
 
   // resume() with a skin: the list of the snapshot's build, at its positions.
@@ -368,7 +368,7 @@ class Scene {
   std::optional<PeriodicGhosts<D>> ghosts_;
   mpi::Communicator comm_;  // the ranks of the run ({self, 0, 1}: one)
   std::unique_ptr<mpi::DomainDecomposition<D>> decomposition_;  // R > 1 only
-  Real rebalanceTolerance_ = 0.1;
+  Real rebalanceTolerance_ = 0;  // set by setDecomposition (rebalance_tolerance)
   long balances_ = 0;
   mutable std::vector<Real> work_;  // scratch, per owned particle: 1 + its neighbours at the last build
   std::optional<ShiftingPass<D>> shifting_;
@@ -418,7 +418,7 @@ std::optional<StateFailure> Scene<D>::resume(long step, Real time, bool inSortOr
   if (skin_ > 0) {
     rebuildRecordedList(checkOrder);
   } else {
-    sort(/*carryAll=*/decomposition_ != nullptr);  // one rank: the sort must not move them
+    sort(/*carryAll=*/true);  // the snapshot's rates follow any move (none for a one-rank .vtp)
     if (checkOrder) checkResumeOrder("");
   }
   model_.refreshCspmMatrices(P_, neighbours_);
@@ -547,19 +547,17 @@ void Scene<D>::rebuildRecordedList(bool checkOrder) {
     return;
   }
   // Every rank's (id, position): the sort may give this rank others' particles.
-  std::vector<std::pair<std::int64_t, Vec<D>>> now;  // once, at the start
-  now.reserve(P_.size());
-  for (std::size_t i = 0; i < P_.size(); ++i) now.emplace_back(P_.id[i], P_.x[i]);
-  now = mpi::allGather(comm_, now);
-  std::sort(now.begin(), now.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<mpi::ById<Vec<D>>> mine(P_.size());  // once, at the start
+  for (std::size_t i = 0; i < P_.size(); ++i) mine[i] = {P_.id[i], P_.x[i]};
+  const auto now = mpi::allGatherById(comm_, mine);
   std::copy(P_.xList.begin(), P_.xList.begin() + owned, P_.x.begin());
   sort();
   if (checkOrder) checkResumeOrder(" at its list_build_position");
   for (std::size_t i = 0; i < P_.size(); ++i) {
     const auto it = std::lower_bound(now.begin(), now.end(), P_.id[i],
-                                     [](const auto& a, std::int64_t id) { return a.first < id; });
-    if (it == now.end() || it->first != P_.id[i]) throw std::logic_error("Scene::rebuildRecordedList: a particle lost");
-    P_.x[i] = it->second;
+                                     [](const auto& a, std::int64_t id) { return a.id < id; });
+    if (it == now.end() || it->id != P_.id[i]) throw std::logic_error("Scene::rebuildRecordedList: a particle lost");
+    P_.x[i] = it->value;
   }
   P_.refreshGhosts(fieldBit(kFieldX));
 }

@@ -39,7 +39,7 @@ struct RunRecord {
   int dimension = 2;
   int ranks = 1;  // MPI ranks of the run (the last process's)
   long balances = 0;         // several ranks: times the particles were shared out (the last process's)
-  double workImbalance = 0;  // several ranks: the busiest rank's work over the mean at the last sort
+  double workImbalance = 0;  // several ranks: the busiest rank's work over the mean at the end
   std::string model;
   // how it ran
   std::string threadMode;              // "auto" or the count asked for

@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace sph::mpi {
@@ -49,8 +48,8 @@ inline void allSum(const Communicator& c, std::int64_t* values, int n) {
   if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_INT64_T, MPI_SUM, c.comm);
 }
 
-// Every rank's `mine`, in rank order, on every rank (T trivially
-// copyable; MPI_Allgatherv of bytes, so at most 2 GiB in all). For data
+// Every rank's `mine`, in rank order, on every rank (T copied as bytes:
+// plain data; MPI_Allgatherv of bytes, so at most 2 GiB in all). For data
 // gathered once per run, not per step.
 template <class T>
 std::vector<T> allGather(const Communicator& c, const std::vector<T>& mine) {
@@ -66,21 +65,21 @@ std::vector<T> allGather(const Communicator& c, const std::vector<T>& mine) {
   return all;
 }
 
-// The sum of every rank's values, added in the order of their ids (unique
-// over the ranks): the same double however the values are shared out
-// (sum() in any other order differs by round-off). Gathers every value on
-// every rank: for a sum made once per run, not per step.
-inline double allSumInIdOrder(const Communicator& c, const std::vector<std::int64_t>& id,
-                              const std::vector<double>& value) {
-  const std::vector<std::int64_t> ids = allGather(c, id);
-  const std::vector<double> values = allGather(c, value);
-  std::vector<std::pair<std::int64_t, double>> all;
-  all.reserve(ids.size());
-  for (std::size_t k = 0; k < ids.size(); ++k) all.emplace_back(ids[k], values[k]);
-  std::sort(all.begin(), all.end());
-  double sum = 0;
-  for (const auto& iv : all) sum += iv.second;
-  return sum;
+// A particle's value with its id.
+template <class T>
+struct ById {
+  std::int64_t id;
+  T value;
+};
+
+// Every rank's records on every rank, in the order of their ids (unique
+// over the ranks): the same sequence however the particles are shared out,
+// so that sums over it are the same double on any number of ranks.
+template <class T>
+std::vector<ById<T>> allGatherById(const Communicator& c, const std::vector<ById<T>>& mine) {
+  std::vector<ById<T>> all = allGather(c, mine);
+  std::sort(all.begin(), all.end(), [](const ById<T>& a, const ById<T>& b) { return a.id < b.id; });
+  return all;
 }
 
 // Rank `root`'s text on every rank.
