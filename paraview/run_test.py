@@ -85,6 +85,41 @@ def run(cmd, expect_ok=True, env=None, timeout=120):
     return r.returncode, out
 
 
+X_FAILURES = ("Xvfb failed to start", "bad X server connection",
+              "cannot open display", "Can't open display")
+
+
+def xvfb(e, cmd, server=None, env=None, timeout=120, before_retry=None):
+    """Run cmd under xvfb-run on a random display number (xvfb-run -a
+    starts at :99 and races other xvfb-runs of the machine for it).  An X
+    server that fails to start or refuses the client (VTK then aborts with
+    "bad X server connection", seen twice in a row in one CI run) is
+    retried up to three times in all, each on another display, and
+    Xvfb's own messages (xvfb-run -e) are printed; anything else counts."""
+    import random
+    cmd = list(cmd)
+    errors = os.path.join(e.work, "xvfb-errors.log")
+    for attempt in (1, 2, 3):
+        os.makedirs(e.work, exist_ok=True)
+        open(errors, "w").close()     # xvfb-run -e appends
+        full = [e.a.xvfb_run, "-a", "-n", str(random.randint(200, 899)),
+                "-e", errors]
+        if server:
+            full += ["-s", server]
+        code, out = run(full + cmd, expect_ok=False, env=env,
+                        timeout=timeout)
+        if code == 0 or not any(m in out for m in X_FAILURES):
+            break
+        with open(errors, errors="replace") as f:
+            log("Xvfb said:\n" + (f.read().strip() or "(nothing)"))
+        if attempt < 3:
+            log("note: the X server failed; retrying on another display")
+            time.sleep(2 * attempt)
+            if before_retry:
+                before_retry(cmd)
+    return code, out
+
+
 class Env:
     def __init__(self, a):
         self.a = a
@@ -105,18 +140,10 @@ class Env:
             raise TestFailure("sph executable not found: %s" % self.a.sph)
 
     def render(self, args, expect_ok=True):
-        """Run render.py headless, the documented way.  An Xvfb that fails
-        to start (a display-number race with another xvfb-run) is retried
-        once; anything else counts."""
-        cmd = [self.a.xvfb_run, "-a", self.a.pvpython,
-               "--disable-xdisplay-test", RENDER] + args
-        for attempt in (1, 2):
-            code, out = run(cmd, expect_ok=False)
-            if "Xvfb failed to start" in out and attempt == 1:
-                log("note: Xvfb failed to start; retrying once")
-                time.sleep(1)
-                continue
-            break
+        """Run render.py headless, the documented way (under xvfb(): an X
+        server that fails is retried; anything else counts)."""
+        code, out = xvfb(self, [self.a.pvpython, "--disable-xdisplay-test",
+                                RENDER] + args)
         if expect_ok and code != 0:
             raise TestFailure("render.py failed (exit %d)" % code)
         return code, out
@@ -376,8 +403,7 @@ def t_gui(e):
     root = os.path.join(e.work, "root")
     run_dir = os.path.join(root, "runs", case)
     e.sph_run(case, run_dir, "--end_time", "0.002")   # t = 0 is shown
-    cmd = [e.a.xvfb_run, "-a", "-s", "-screen 0 1600x1000x24",
-           sys.executable, GUI_CHECK, "--cwd", root,
+    cmd = [sys.executable, GUI_CHECK, "--cwd", root,
            "--paraview", e.a.paraview, "--import-cmd", e.a.import_cmd,
            "--min-pixels", str(gui_min_pixels(case)), "--timeout", "100",
            "--output", os.path.join(e.work, "screen.png")]
@@ -395,7 +421,8 @@ def t_gui(e):
         cmd += [bare, "--settle", "10"]
     else:
         cmd += [state]
-    code, out = run(cmd, expect_ok=False, env=env, timeout=140)
+    code, out = xvfb(e, cmd, server="-screen 0 1600x1000x24", env=env,
+                     timeout=140)
     if e.a.no_layout:
         if code == 0:
             raise TestFailure("gui_check.py passed a state without a layout")
@@ -451,27 +478,17 @@ def case_path(case):
     return os.path.join(ROOT, "cases", case + ".case")
 
 
+def add_overwrite(cmd):
+    """A run aborted with its X server left its output folder behind
+    (marked as running): the retry replaces it."""
+    if "--output" in cmd and "--overwrite" not in cmd:
+        cmd.append("--overwrite")
+
+
 def xvfb_sph(e, args, env=None, timeout=300):
-    """sph under xvfb-run -a, from a random display number (xvfb-run -a
-    starts at :99 and races other xvfb-runs of the machine for it), retried
-    once when the X server fails to start or goes away under it (VTK then
-    aborts: "bad X server connection"), like Env.render."""
-    import random
-    for attempt in (1, 2):
-        cmd = [e.a.xvfb_run, "-a", "-n", str(random.randint(200, 899)),
-               e.a.sph] + args
-        code, out = run(cmd, expect_ok=False, env=env, timeout=timeout)
-        if ("Xvfb failed to start" in out or
-                "bad X server connection" in out) and attempt == 1:
-            log("note: the X server failed; retrying once")
-            time.sleep(1)
-            # The aborted run left its output folder behind (marked as
-            # running): the retry replaces it.
-            if "--output" in args and "--overwrite" not in args:
-                args = args + ["--overwrite"]
-            continue
-        break
-    return code, out
+    """sph under xvfb()."""
+    return xvfb(e, [e.a.sph] + args, env=env, timeout=timeout,
+                before_retry=add_overwrite)
 
 
 def t_catalyst_png(e):
@@ -674,12 +691,12 @@ def t_catalyst_live(e):
         raise TestFailure("with no GUI listening the run did not finish "
                           "(exit %d)" % code)
     live_dir = os.path.join(e.work, "live")
-    cmd = [e.a.xvfb_run, "-a", e.a.pvpython, "--disable-xdisplay-test",
+    cmd = [e.a.pvpython, "--disable-xdisplay-test",
            os.path.join(HERE, "catalyst_live_check.py"), str(free_port()),
            "--", e.a.sph, "run", case_path("dam_break"), "--output", live_dir,
            "--end_time", "0.05", "--output_every", "2000", "--no-progress",
            "--catalyst", CATALYST_LIVE, "--catalyst_every", "20"]
-    code, out = run(cmd, expect_ok=False, timeout=170)
+    code, out = xvfb(e, cmd, timeout=170, before_retry=add_overwrite)
     summary = [l for l in out.splitlines() if l.startswith("live summary:")]
     if code != 0 or not summary:
         raise TestFailure("the live client got nothing (exit %d)" % code)
@@ -706,9 +723,8 @@ def t_units(e):
              "--end_time", "0.0004", "--no-progress"])
         files += [os.path.join(out, f) for f in sorted(os.listdir(out))
                   if f.endswith(".vtp")][-1:]
-    code, _ = run([e.a.xvfb_run, "-a", e.a.pvpython, "--disable-xdisplay-test",
-                   os.path.join(HERE, "check_units.py")] + files,
-                  expect_ok=False)
+    code, _ = xvfb(e, [e.a.pvpython, "--disable-xdisplay-test",
+                       os.path.join(HERE, "check_units.py")] + files)
     if code != 0:
         raise TestFailure("check_units.py found arrays without their unit")
     import glob
