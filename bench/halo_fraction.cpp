@@ -8,7 +8,12 @@
 // and make the halos within RADIUS (the neighbour list's: the kernel support
 // times 1 + neighbour_skin). Rank 0 prints, per rank and in all, the owned
 // particles, the halo particles and their ratio (the halo fraction), and the
-// particles sent. A measurement, not a test.
+// particles sent; then what the messages cost without waiting: the ranks
+// meet at a barrier, refresh the halos of every field they hold 200 times
+// (packing, MPI_Isend/Irecv, MPI_Waitall, unpacking) and make 1 000
+// MPI_Allreduce of one number; the slowest rank's mean per call. A
+// measurement, not a test.
+#include "sph/mpi/communication_time.hpp"
 #include "sph/mpi/domain_decomposition.hpp"
 #include "sph/mpi/session.hpp"
 #include "sph/particle_sources.hpp"
@@ -20,6 +25,17 @@
 #include <vector>
 
 namespace {
+
+// The slowest rank's mean seconds per call of f, called n times after a barrier.
+template <class F>
+double secondsPerCall(const sph::mpi::Communicator& c, int n, F&& f) {
+  MPI_Barrier(c.comm);
+  const double t0 = MPI_Wtime();
+  for (int k = 0; k < n; ++k) f();
+  double t = (MPI_Wtime() - t0) / n;
+  MPI_Allreduce(MPI_IN_PLACE, &t, 1, MPI_DOUBLE, MPI_MAX, c.comm);
+  return t;
+}
 
 template <int D>
 int measure(const sph::mpi::Communicator& c, const std::string& file, sph::Real radius) {
@@ -39,11 +55,21 @@ int measure(const sph::mpi::Communicator& c, const std::string& file, sph::Real 
   dd.balance(P);
   dd.migrate(P);
   dd.makeHalos(P, radius);
+  double refresh = 0, allreduce = 0, bytes = 0;
+  if (c.size > 1) {
+    const sph::FieldSet fields = P.allocated();
+    const double before = sph::mpi::communicationTime().haloBytesSent;
+    refresh = secondsPerCall(c, 200, [&] { dd.refreshHalos(P, fields); });
+    bytes = (sph::mpi::communicationTime().haloBytesSent - before) / 200;
+    double one = 1;
+    allreduce = secondsPerCall(c, 1000, [&] { MPI_Allreduce(MPI_IN_PLACE, &one, 1, MPI_DOUBLE, MPI_MAX, c.comm); });
+  }
   long mine[4] = {static_cast<long>(P.size()), static_cast<long>(dd.haloCount()), static_cast<long>(dd.sentCount()),
                   static_cast<long>(P.fluidCount())};
   std::vector<long> every(4 * static_cast<std::size_t>(c.size));
   if (c.size > 1) MPI_Gather(mine, 4, MPI_LONG, every.data(), 4, MPI_LONG, 0, c.comm);
   else every.assign(mine, mine + 4);
+  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &bytes, 1, MPI_DOUBLE, MPI_MAX, c.comm);
   if (c.rank != 0) return 0;
   std::printf("%s: %zu particles (%zu fluid), radius %g, %d ranks\n", file.c_str(), all.size(), all.fluidCount(),
               static_cast<double>(radius), c.size);
@@ -56,8 +82,13 @@ int measure(const sph::mpi::Communicator& c, const std::string& file, sph::Real 
     halo += e[1];
   }
   std::printf("all,%ld,,%ld,%.4f,\n", owned, halo, owned ? double(halo) / double(owned) : 0.0);
+  if (c.size > 1)
+    std::printf("a halo refresh of every field (at most %.0f bytes sent by a rank): %.1f us; an MPI_Allreduce of "
+                "one number: %.2f us (slowest rank, mean of 200 and 1 000 calls after a barrier)\n",
+                bytes, 1e6 * refresh, 1e6 * allreduce);
   return 0;
 }
+
 
 }  // namespace
 

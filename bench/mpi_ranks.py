@@ -5,7 +5,11 @@ stepping seconds per step (run.json's stepping_seconds, so the set-up and
 the first snapshot are left out), particle-steps per second, the ratio
 against 1 x 1 measured in the same rounds, and the 2-rank runs' work
 balance (run.json's work_imbalance: the busiest rank's pairs + particles
-over the mean).
+over the mean), their time communicating a step (run.json's
+communication_per_step: halo refreshes, reductions and the re-sort's
+exchanges, the waits for the other rank included, mean of the ranks; its
+share of the step; and the least of the ranks', about the messages' cost
+without waiting) and halo particles per owned particle.
 
     python3 bench/mpi_ranks.py --build build --spacing 0.00125 --steps 100 --repeats 3
     python3 bench/mpi_ranks.py --dimension 3 --spacing 0.0073 --steps 20
@@ -59,7 +63,10 @@ def run(build, config, spacing, steps, out, dimension=2):
     s = record["summary"]
     return {"time": s["stepping_seconds"] / s["steps"], "n": s["particles"], "neighbours": s["neighbours_per_particle"],
             "bytes": s["bytes_per_particle"], "imbalance": record.get("work_imbalance", 1.0),
-            "balances": record.get("balances", 1)}
+            "balances": record.get("balances", 1), "halo_fraction": record.get("halo_fraction", 0.0),
+            "communication": sum(record.get("communication_per_step", {}).get(k, 0.0)
+                                 for k in ("halo_seconds", "reduction_seconds", "resort_seconds")),
+            "least": record.get("communication_per_step", {}).get("least_of_the_ranks_seconds", 0.0)}
 
 
 def load():
@@ -98,21 +105,27 @@ def main():
           f"per particle (all ranks), {a.steps} steps, median of {a.repeats}; {cores} cores, load {load()}")
     base = statistics.median(r["time"] for r in results[configs[0]])
     if a.weak:
-        print("| ranks x threads | particles | per rank | s per step | particle-steps/s | efficiency (t1 / tR) | work imbalance |")
-        print("|---|---|---|---|---|---|---|")
+        print("| ranks x threads | particles | per rank | s per step | particle-steps/s | efficiency (t1 / tR) | "
+              "work imbalance | communicating a step | halo per owned |")
+        print("|---|---|---|---|---|---|---|---|---|")
     else:
-        print("| ranks x threads | s per step | particle-steps/s | vs 1 x 1 | work imbalance |")
-        print("|---|---|---|---|---|")
+        print("| ranks x threads | s per step | particle-steps/s | vs 1 x 1 | work imbalance | communicating a step | "
+              "halo per owned |")
+        print("|---|---|---|---|---|---|---|")
     for c in configs:
         m = statistics.median(r["time"] for r in results[c])
         last = results[c][-1]
         n = last["n"]
         imbalance = f"{last['imbalance']:.3f} ({last['balances']} shares)" if c[0] > 1 else "-"
+        talk = statistics.median(r["communication"] for r in results[c])
+        least = statistics.median(r["least"] for r in results[c])
+        comm = (f"{1e3 * talk:.3g} ms ({100 * talk / m:.1f}%; least rank {1e3 * least:.3g}) | "
+                f"{last['halo_fraction']:.3f}" if c[0] > 1 else "- | -")
         marked = " (oversubscribed)" if c[0] * c[1] > cores else ""
         if a.weak:
-            print(f"| {c[0]} x {c[1]}{marked} | {n} | {n // c[0]} | {m:.4f} | {n / m:.3g} | {base / m:.2f} | {imbalance} |")
+            print(f"| {c[0]} x {c[1]}{marked} | {n} | {n // c[0]} | {m:.4f} | {n / m:.3g} | {base / m:.2f} | {imbalance} | {comm} |")
         else:
-            print(f"| {c[0]} x {c[1]}{marked} | {m:.4f} | {n / m:.3g} | {base / m:.2f} | {imbalance} |")
+            print(f"| {c[0]} x {c[1]}{marked} | {m:.4f} | {n / m:.3g} | {base / m:.2f} | {imbalance} | {comm} |")
 
 
 if __name__ == "__main__":

@@ -181,9 +181,11 @@ RunTotals driveRun(const ResolvedCase& c, Scene<D>& scene, RunOutput<D>& output,
     bool lastDone = false;
     while (!finished() && !lastDone) {
       const auto t0 = Clock::now();
+      const mpi::CommunicationTime before = mpi::communicationTime();
       const auto failure = scene.step(nextOutput);
       const double dtWall = secondsSince(t0);
       totals.stepSeconds += dtWall;
+      totals.communication += mpi::communicationTime() - before;
       tuner.record(dtWall);
       totals.dtStats.add(scene.lastTimeStep());
       output.addTimeStep(scene);

@@ -61,6 +61,14 @@ void writeRunRecord(const std::filesystem::path& dir, const RunRecord& r) {
   if (r.ranks > 1) {
     j["balances"] = r.balances;
     j["work_imbalance"] = r.workImbalance;
+    j["communication_per_step"] = {{"halo_seconds", r.haloSecondsPerStep},
+                                   {"reduction_seconds", r.reductionSecondsPerStep},
+                                   {"resort_seconds", r.resortSecondsPerStep},
+                                   {"reductions", r.reductionsPerStep},
+                                   {"least_of_the_ranks_seconds", r.leastCommunicationSecondsPerStep},
+                                   {"halo_refreshes", r.haloRefreshesPerStep},
+                                   {"halo_bytes_sent", r.haloBytesPerStep}};
+    j["halo_fraction"] = r.haloFraction;
   }
   j["threads"] = {{"asked", r.threadMode}, {"used", r.threadsUsed}, {"stepping_seconds", seconds}};
   j["started"] = r.started;
@@ -111,6 +119,17 @@ RunRecord readRunRecord(const std::filesystem::path& dir) {
     r.ranks = j.value("ranks", 1);  // (absent in runs written before MPI)
     r.balances = j.value("balances", 0L);
     r.workImbalance = j.value("work_imbalance", 0.0);
+    if (j.contains("communication_per_step") && j["communication_per_step"].is_object()) {
+      const auto& c = j["communication_per_step"];
+      r.haloSecondsPerStep = c.value("halo_seconds", 0.0);
+      r.reductionSecondsPerStep = c.value("reduction_seconds", 0.0);
+      r.resortSecondsPerStep = c.value("resort_seconds", 0.0);
+      r.reductionsPerStep = c.value("reductions", 0.0);
+      r.leastCommunicationSecondsPerStep = c.value("least_of_the_ranks_seconds", 0.0);
+      r.haloRefreshesPerStep = c.value("halo_refreshes", 0.0);
+      r.haloBytesPerStep = c.value("halo_bytes_sent", 0.0);
+    }
+    r.haloFraction = j.value("halo_fraction", 0.0);
     r.threadMode = j.at("threads").at("asked").get<std::string>();
     r.threadsUsed = j.at("threads").at("used").get<std::vector<int>>();
     for (const auto& [count, s] : j.at("threads").at("stepping_seconds").items())

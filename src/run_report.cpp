@@ -168,6 +168,32 @@ void RunReport::finish(const Scene<D>& scene, const ResolvedCase& c, const RunTo
   record.neighboursPerParticle = scene.meanNeighbours();
   record.balances = scene.balances();
   record.workImbalance = scene.workImbalance();
+  const mpi::Communicator& comm = scene.communicator();
+  if (comm.size > 1) {
+    // Means over the ranks: per step of this process, halo per owned.
+    const mpi::CommunicationTime& spent = totals.communication;
+    double sums[8] = {spent.halo,
+                      spent.reductions,
+                      spent.resort,
+                      static_cast<double>(spent.reductionCalls),
+                      static_cast<double>(scene.haloCount()),
+                      static_cast<double>(scene.particles().size()),
+                      static_cast<double>(spent.haloRefreshes),
+                      spent.haloBytesSent};
+    mpi::allSum(comm, sums, 8);
+    const double perStep = done > 0 ? 1.0 / (static_cast<double>(comm.size) * static_cast<double>(done)) : 0;
+    record.haloSecondsPerStep = sums[0] * perStep;
+    record.reductionSecondsPerStep = sums[1] * perStep;
+    record.resortSecondsPerStep = sums[2] * perStep;
+    record.reductionsPerStep = sums[3] * perStep;
+    record.haloFraction = sums[5] > 0 ? sums[4] / sums[5] : 0;
+    record.haloRefreshesPerStep = sums[6] * perStep;
+    record.haloBytesPerStep = sums[7] * perStep;
+    // The rank that communicated least is the one the others waited for:
+    // its time is about what the messages cost without waiting.
+    record.leastCommunicationSecondsPerStep =
+        mpi::allMin(comm, spent.total()) * (done > 0 ? 1.0 / static_cast<double>(done) : 0.0);
+  }
   record.bytesPerParticle = static_cast<double>(scene.bytesAllocated()) / static_cast<double>(n);
   for (const auto& [name, count] : dtStats.criteria) record.dtCriteria[name] += count;
   if (dtStats.steps() > 0) {
@@ -205,6 +231,19 @@ void RunReport::finish(const Scene<D>& scene, const ResolvedCase& c, const RunTo
                   "  ranks            %d (the busiest's work %.3f x the mean at the end; the particles "
                   "shared out %ld time(s), rebalance_tolerance %s)\n",
                   record.ranks, record.workImbalance, record.balances, shortestDecimal(c.rebalanceTolerance).c_str());
+    out << buf;
+    const double perStep =
+        record.haloSecondsPerStep + record.reductionSecondsPerStep + record.resortSecondsPerStep;
+    const double stepMean = done > 0 ? stepSeconds / static_cast<double>(done) : 0;
+    std::snprintf(buf, sizeof buf,
+                  "  communication    %.3g ms a step, %.1f%% of the stepping (halo refresh %.3g, reductions %.3g, "
+                  "re-sort %.3g ms; mean of the ranks, waiting for the others included; the least of the ranks "
+                  "%.3g ms), %.1f reductions and %.1f halo refreshes of %.3g kB a step; %.3f halo particles per owned\n",
+                  1e3 * perStep, stepMean > 0 ? 100 * perStep / stepMean : 0.0, 1e3 * record.haloSecondsPerStep,
+                  1e3 * record.reductionSecondsPerStep, 1e3 * record.resortSecondsPerStep,
+                  1e3 * record.leastCommunicationSecondsPerStep, record.reductionsPerStep, record.haloRefreshesPerStep,
+                  1e-3 * record.haloBytesPerStep / std::max(record.haloRefreshesPerStep, 1e-300),
+                  record.haloFraction);
     out << buf;
   }
   // The kernel corrections: what they did in this process (a resumed

@@ -298,6 +298,48 @@ BOOST_AUTO_TEST_CASE(the_work_is_shared_out_evenly_without_changing_the_results)
   compareSeriesBitwise(once, even, "dam_break");
 }
 
+// The time and messages of communication a step (run.json's
+// communication_per_step, the summary's line), told apart by kind, and
+// consistent with one another: the parts add up to what each rank spent;
+// the rank that spent least spent no more than the mean; the bytes a
+// refresh sends over the ranks are the halo particles received times one
+// record (counted from the send lists; the halo fraction from the halo
+// count), so a record of 8 to 400 bytes (one double to every field); the
+// particles of a 3-rank share have more halo than a 2-rank one's (more
+// rank boundaries per particle).
+BOOST_AUTO_TEST_CASE(time_communicating_is_measured_and_told_apart) {
+  double fraction[2] = {0, 0};
+  for (int R : {2, 3}) {
+    const auto dir = sph::test::scratchDir("communication_" + std::to_string(R));
+    const auto r = runRanks(R, runArgs("dam_break", dir, "0.01"));
+    BOOST_REQUIRE_MESSAGE(r.exitCode == 0, r.output);
+    BOOST_TEST(r.output.find("  communication    ") != std::string::npos, r.output);
+    std::ifstream in(dir / "run.json");
+    const auto j = nlohmann::json::parse(in);
+    const auto& c = j.at("communication_per_step");
+    const double halo = c.at("halo_seconds"), reductions = c.at("reduction_seconds"), resort = c.at("resort_seconds");
+    const double least = c.at("least_of_the_ranks_seconds"), refreshes = c.at("halo_refreshes");
+    const double bytes = c.at("halo_bytes_sent"), perStep = c.at("reductions");
+    const double stepSeconds = j.at("summary").at("stepping_seconds").get<double>() / j.at("summary").at("steps").get<double>();
+    BOOST_TEST(halo > 0);
+    BOOST_TEST(reductions > 0);
+    BOOST_TEST(resort >= 0);
+    BOOST_TEST(halo + reductions + resort < stepSeconds);
+    BOOST_TEST(least <= halo + reductions + resort);
+    BOOST_TEST(perStep >= 1);  // the time step at least
+    BOOST_TEST(refreshes >= 1);
+    const double f = j.at("halo_fraction");
+    BOOST_TEST(f > 0);
+    BOOST_TEST(f < 1);
+    const double ownedPerRank = j.at("summary").at("particles").get<double>() / R;
+    const double record = bytes / refreshes / (f * ownedPerRank);
+    BOOST_TEST(record >= 8, "bytes of a halo record " << record);
+    BOOST_TEST(record <= 400, "bytes of a halo record " << record);
+    fraction[R - 2] = f;
+  }
+  BOOST_TEST(fraction[1] > fraction[0]);
+}
+
 BOOST_AUTO_TEST_CASE(hydrostatic_tank_3d_on_2_ranks) { compareWithOneRank("hydrostatic_tank_3d", "0.02", {2}); }
 
 // The toy star (a central force, no walls; its density profile gathered

@@ -7,6 +7,7 @@
 
 #include "sph/case_config.hpp"
 #include "sph/io/run_folder.hpp"
+#include "sph/mpi/communication_time.hpp"
 #include "sph/thread_tuner.hpp"
 #include "sph/time_step.hpp"
 
@@ -40,6 +41,7 @@ struct RunTotals {
   long firstStep = 0;          // the step this process started at
   double stepSeconds = 0;      // wall time inside the steps
   std::chrono::steady_clock::time_point wall0;  // when the loop started
+  mpi::CommunicationTime communication;  // this rank's, inside the steps (several ranks)
   TimeStepStats dtStats;
 };
 

@@ -40,6 +40,13 @@ struct RunRecord {
   int ranks = 1;  // MPI ranks of the run (the last process's)
   long balances = 0;         // several ranks: times the particles were shared out (the last process's)
   double workImbalance = 0;  // several ranks: the busiest rank's work over the mean at the end
+  // several ranks, the last process's steps, mean over the ranks: wall-clock
+  // seconds a step spent communicating (waiting included; mpi/
+  // communication_time.hpp), by kind, and halo particles per owned one at the end
+  double haloSecondsPerStep = 0, reductionSecondsPerStep = 0, resortSecondsPerStep = 0;
+  double reductionsPerStep = 0, haloFraction = 0;
+  double leastCommunicationSecondsPerStep = 0;  // the rank that communicated least (the one waited for)
+  double haloRefreshesPerStep = 0, haloBytesPerStep = 0;  // bytes sent by a rank a step
   std::string model;
   // how it ran
   std::string threadMode;              // "auto" or the count asked for

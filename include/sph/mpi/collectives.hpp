@@ -4,6 +4,7 @@
 // the code it was.
 #pragma once
 
+#include "sph/mpi/communication_time.hpp"
 #include "sph/mpi/session.hpp"
 #include "sph/types.hpp"
 
@@ -17,35 +18,39 @@
 
 namespace sph::mpi {
 
+// MPI_Allreduce in place, timed as a reduction (communication_time.hpp).
+inline void allReduce(const Communicator& c, void* values, int n, MPI_Datatype type, MPI_Op op) {
+  if (c.size == 1) return;
+  Timed timed(&CommunicationTime::reductions);
+  ++communicationTime().reductionCalls;
+  MPI_Allreduce(MPI_IN_PLACE, values, n, type, op, c.comm);
+}
+
 inline double allSum(const Communicator& c, double value) {
-  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_SUM, c.comm);
+  allReduce(c, &value, 1, MPI_DOUBLE, MPI_SUM);
   return value;
 }
 inline std::int64_t allSum(const Communicator& c, std::int64_t value) {
-  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT64_T, MPI_SUM, c.comm);
+  allReduce(c, &value, 1, MPI_INT64_T, MPI_SUM);
   return value;
 }
 inline double allMax(const Communicator& c, double value) {
-  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MAX, c.comm);
+  allReduce(c, &value, 1, MPI_DOUBLE, MPI_MAX);
   return value;
 }
 inline double allMin(const Communicator& c, double value) {
-  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, c.comm);
+  allReduce(c, &value, 1, MPI_DOUBLE, MPI_MIN);
   return value;
 }
 inline int allMax(const Communicator& c, int value) {
-  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_INT, MPI_MAX, c.comm);
+  allReduce(c, &value, 1, MPI_INT, MPI_MAX);
   return value;
 }
 // n values at once, in place (one message for several maxima / sums).
-inline void allMax(const Communicator& c, double* values, int n) {
-  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_MAX, c.comm);
-}
-inline void allSum(const Communicator& c, double* values, int n) {
-  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_DOUBLE, MPI_SUM, c.comm);
-}
+inline void allMax(const Communicator& c, double* values, int n) { allReduce(c, values, n, MPI_DOUBLE, MPI_MAX); }
+inline void allSum(const Communicator& c, double* values, int n) { allReduce(c, values, n, MPI_DOUBLE, MPI_SUM); }
 inline void allSum(const Communicator& c, std::int64_t* values, int n) {
-  if (c.size > 1) MPI_Allreduce(MPI_IN_PLACE, values, n, MPI_INT64_T, MPI_SUM, c.comm);
+  allReduce(c, values, n, MPI_INT64_T, MPI_SUM);
 }
 
 // Every rank's `mine`, in rank order, on every rank (T copied as bytes:
@@ -54,6 +59,8 @@ inline void allSum(const Communicator& c, std::int64_t* values, int n) {
 template <class T>
 std::vector<T> allGather(const Communicator& c, const std::vector<T>& mine) {
   if (c.size == 1) return mine;
+  Timed timed(&CommunicationTime::reductions);
+  ++communicationTime().reductionCalls;
   const int bytes = static_cast<int>(mine.size() * sizeof(T));
   std::vector<int> counts(static_cast<std::size_t>(c.size)), displs(static_cast<std::size_t>(c.size));
   MPI_Allgather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, c.comm);
@@ -102,9 +109,9 @@ struct FirstOfRanks {
 inline FirstOfRanks firstOfRanks(const Communicator& c, std::int64_t key) {
   FirstOfRanks first{key, key == INT64_MAX ? -1 : c.rank};
   if (c.size == 1) return first;
-  MPI_Allreduce(MPI_IN_PLACE, &first.key, 1, MPI_INT64_T, MPI_MIN, c.comm);
+  allReduce(c, &first.key, 1, MPI_INT64_T, MPI_MIN);
   int mine = key == first.key && key != INT64_MAX ? c.rank : c.size;
-  MPI_Allreduce(MPI_IN_PLACE, &mine, 1, MPI_INT, MPI_MIN, c.comm);
+  allReduce(c, &mine, 1, MPI_INT, MPI_MIN);
   first.rank = mine == c.size ? -1 : mine;
   return first;
 }

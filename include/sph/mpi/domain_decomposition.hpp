@@ -40,6 +40,7 @@
 // splitter search 10^9 particles need (docs/developer/mpi.md).
 #pragma once
 
+#include "sph/mpi/communication_time.hpp"
 #include "sph/mpi/session.hpp"
 #include "sph/particles.hpp"
 #include "sph/types.hpp"
@@ -77,11 +78,13 @@ class DomainDecomposition {
   void balance(const Particles<D>& P, const std::vector<Real>* cost = nullptr) {
     const std::size_t n = P.size();
     if (cost && cost->size() < n) throw std::invalid_argument("DomainDecomposition::balance: a cost per particle");
-    setOrigin(P);
     if (comm_.size == 1) {
+      setOrigin(P);
       splitters_.clear();
       return;
     }
+    Timed timed(&CommunicationTime::resort);
+    setOrigin(P);
     // This rank's cells: (key, weight), sorted, one entry per cell.
     cellWeights_.resize(n);
     for (std::size_t i = 0; i < n; ++i) cellWeights_[i] = {keyOf(P.x[i]), cost ? (*cost)[i] : Real(1)};
@@ -163,6 +166,7 @@ class DomainDecomposition {
     P.clearGhosts();
     clearHaloRecords();
     if (comm_.size == 1) return;
+    Timed timed(&CommunicationTime::resort);
     const int R = comm_.size;
     // The records are the allocated fields: the same on every rank.
     FieldSet sets[2] = {P.allocated(), ~P.allocated()};
@@ -220,6 +224,7 @@ class DomainDecomposition {
     const Real layer = radius * (1 + 1e-9), layer2 = layer * layer;
     const int R = comm_.size;
     if (R == 1) return;  // no halo
+    Timed timed(&CommunicationTime::resort);
     // The periodic ghosts already there, without the old halos.
     std::vector<std::uint32_t>& source = localSource_;
     std::vector<Vec<D>>& shift = localShift_;
@@ -392,9 +397,12 @@ class DomainDecomposition {
   void startHaloRefresh(const Particles<D>& P, FieldSet fields) {
     if (comm_.size == 1) return;
     if (!requests_.empty()) throw std::logic_error("DomainDecomposition: a halo refresh is already under way");
+    Timed timed(&CommunicationTime::halo);
     refreshFields_ = fields & P.allocated() & ~kListFields;  // a halo's build positions are its rank's own
     record_ = recordBytes(P, refreshFields_);
     if (record_ == 0) return;
+    ++communicationTime().haloRefreshes;
+    communicationTime().haloBytesSent += static_cast<double>(sendIndex_.size() * record_);
     pack(P, refreshFields_, record_, sendIndex_, sendBuffer_);
     recvBuffer_.resize(haloCount_ * record_);
     type_ = recordType(record_);
@@ -415,6 +423,7 @@ class DomainDecomposition {
   // Wait for the halo's fields and copy them into the halo particles.
   void finishHaloRefresh(Particles<D>& P) {
     if (comm_.size == 1 || record_ == 0) return;
+    Timed timed(&CommunicationTime::halo);
     MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
     requests_.clear();
     MPI_Type_free(&type_);
