@@ -40,7 +40,6 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   if (comm.size > 1) {
     std::string refused;
     if (!c.catalyst.empty()) refused = "--catalyst";
-    else if (surfaceTensionCurvature(c)) refused = "surface_tension = \"" + c.surfaceTension + "\"";
     if (!refused.empty()) {
       err << "sph: error: " << refused << " runs on one MPI rank so far (started on " << comm.size
           << " ranks; run it without mpirun, or with mpirun -n 1)\n";

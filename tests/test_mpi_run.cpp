@@ -445,13 +445,23 @@ BOOST_AUTO_TEST_CASE(sigterm_to_one_rank_stops_every_rank) {
 }
 
 // Not wired for ranks yet: one line, exit 2, nothing written.
+// Surface tension: the colour field's normals (and, corrected, the
+// curvatures) of the halo particles refreshed between the pass's loops,
+// inside its parallel region (Particles::refreshGhostsAndHalosInTeam). The
+// square droplet (corrected, a colour region) and the oscillating one.
+BOOST_AUTO_TEST_CASE(surface_tension_on_ranks) {
+  compareWithOneRank("droplet_surface_tension", "0.05", {2, 3});
+  compareWithOneRank("droplet_oscillation", "0.02", {2});
+}
+
 BOOST_AUTO_TEST_CASE(what_runs_on_one_rank_only_is_refused_in_one_line) {
   const auto dir = sph::test::scratchDir("refused");
-  const auto drop = runRanks(2, runArgs("droplet_surface_tension", dir / "drop", "0.01"));
-  BOOST_TEST(drop.exitCode == 2, drop.output);
-  BOOST_TEST(drop.output.find("surface_tension = \"corrected\" runs on one MPI rank so far") != std::string::npos,
-             drop.output);
-  BOOST_TEST(!std::filesystem::exists(dir / "drop"));
+  const auto script = std::filesystem::path(sph::test::caseFile("dam_break")).parent_path().parent_path() /
+                      "paraview" / "catalyst_png.py";
+  const auto live = runRanks(2, runArgs("dam_break", dir / "live", "0.01", {"--catalyst", script.string()}));
+  BOOST_TEST(live.exitCode == 2, live.output);
+  BOOST_TEST(live.output.find("--catalyst runs on one MPI rank so far") != std::string::npos, live.output);
+  BOOST_TEST(!std::filesystem::exists(dir / "live"));
   const auto check = runRanks(2, {"check", sph::test::caseFile("dam_break")});
   BOOST_TEST(check.exitCode == 2, check.output);
   BOOST_TEST(check.output.find("only 'sph run' runs on several") != std::string::npos, check.output);

@@ -309,6 +309,18 @@ struct Particles : FieldArrays<D> {
 #pragma omp barrier
   }
 
+  // The same, then the halo particles' (collective): the team's master, the
+  // thread that talks to MPI (MPI_THREAD_FUNNELED), refreshes the halos
+  // while the others wait. For a pass that needs its own output on the
+  // neighbours between two of its loops (the colour field's normals).
+  void refreshGhostsAndHalosInTeam(FieldSet fields) {
+    refreshGhostsInTeam(fields);
+    if (!remoteRefresh_) return;  // (the same for every thread)
+#pragma omp master
+    refreshRemoteGhosts(fields);
+#pragma omp barrier
+  }
+
   // Reorder the state and stage fields so that new particle k is old
   // particle order[k]: one parallel region, one gather loop per field into
   // the scratch of its type, then a swap. The grid sorts walls after the

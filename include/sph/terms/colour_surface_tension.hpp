@@ -146,9 +146,10 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
     }
     // Morris (and corrected): the divergence of the unit normal, over the
     // particles that have a reliable one (the loop above has finished: omp
-    // for's barrier), the ghosts' normals copied from their sources.
+    // for's barrier), the ghosts' and halos' normals copied from their
+    // sources.
     if (!muller) {
-      P.refreshGhostsInTeam(fieldBit(kFieldColourNormal));
+      P.refreshGhostsAndHalosInTeam(fieldBit(kFieldColourNormal));
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
         const Real ni = P.colourNormal[i].norm();
@@ -183,7 +184,7 @@ void computeColourField(Particles<D>& P, const NeighbourList<D>& neighbours, con
       // mean of their reliable neighbours' kappa, so that the force acts on
       // the whole of the colour gradient.
       if (corrected) {
-        P.refreshGhostsInTeam(fieldBit(kFieldCurvature));
+        P.refreshGhostsAndHalosInTeam(fieldBit(kFieldCurvature));
 #pragma omp for schedule(static)
         for (std::size_t i = 0; i < n; ++i) {
           const Real ni = P.colourNormal[i].norm();
