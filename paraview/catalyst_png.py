@@ -132,6 +132,23 @@ def _build(grid, datadescription):
                          datadescription, "run_name")))
 
 
+def _all_ranks(lo_hi):
+    """(lo, hi) over every MPI rank of the run (sph on several ranks: each
+    rank's particles are its own piece, and each rank's range its own)."""
+    from vtkmodules.vtkParallelCore import vtkCommunicator, \
+        vtkMultiProcessController
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    ranks = vtkMultiProcessController.GetGlobalController()
+    if ranks is None or ranks.GetNumberOfProcesses() < 2:
+        return lo_hi
+    mine, every = vtkDoubleArray(), vtkDoubleArray()
+    mine.SetNumberOfTuples(2)
+    mine.SetValue(0, -lo_hi[0])
+    mine.SetValue(1, lo_hi[1])
+    ranks.AllReduce(mine, every, vtkCommunicator.MAX_OP)
+    return -every.GetValue(0), every.GetValue(1)
+
+
 def DoCoProcessing(datadescription):
     grid = datadescription.GetInputDescriptionByName("input").GetGrid()
     time = datadescription.GetTime()
@@ -146,8 +163,8 @@ def DoCoProcessing(datadescription):
     if RANGE:
         lo, hi = RANGE
     else:
-        lo, hi = render.readable_range(*render.data_range(
-            p["particles"], FIELD, "Magnitude", [time]))
+        lo, hi = render.readable_range(*_all_ranks(render.data_range(
+            p["particles"], FIELD, "Magnitude", [time])))
     p["lut"].RescaleTransferFunction(lo, hi)
     pv.GetOpacityTransferFunction(FIELD).RescaleTransferFunction(lo, hi)
     p["lut"].AutomaticRescaleRangeMode = "Never"

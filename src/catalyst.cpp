@@ -5,6 +5,7 @@
 #include "sph/case_config.hpp"
 #include "sph/io/catalyst_plugin.h"
 #include "sph/io/snapshot_polydata.hpp"
+#include "sph/mpi/collectives.hpp"
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -17,7 +18,7 @@ namespace sph {
 struct Catalyst::Plugin {
   void* handle = nullptr;
   int (*abi)() = nullptr;
-  int (*initialize)(const char*, const char*, const char*, char*, size_t) = nullptr;
+  int (*initialize)(const char*, const char*, const char*, void*, char*, size_t) = nullptr;
   int (*request)(double, long, int, char*, size_t) = nullptr;
   int (*coprocess)(void*, char*, size_t) = nullptr;
   void (*finalize)() = nullptr;
@@ -40,8 +41,9 @@ void symbol(void* handle, const char* name, F& f, const std::string& path) {
 }
 }  // namespace
 
-Catalyst::Catalyst(const std::string& script, const std::string& runFolder, const std::string& runName)
-    : plugin_(std::make_unique<Plugin>()), script_(script) {
+Catalyst::Catalyst(const std::string& script, const std::string& runFolder, const std::string& runName,
+                   const mpi::Communicator& ranks)
+    : plugin_(std::make_unique<Plugin>()), script_(script), ranks_(ranks) {
   std::error_code ec;
   if (!std::filesystem::exists(script, ec))
     throw CaseError("catalyst: script " + script + " does not exist");
@@ -66,7 +68,9 @@ Catalyst::Catalyst(const std::string& script, const std::string& runFolder, cons
   symbol(plugin_->handle, "sph_catalyst_finalize", plugin_->finalize, path);
   const std::string absolute = std::filesystem::absolute(script, ec).lexically_normal().string();
   const std::string folder = std::filesystem::absolute(runFolder, ec).lexically_normal().string();
-  if (plugin_->initialize(absolute.c_str(), folder.c_str(), runName.c_str(), plugin_->error, sizeof plugin_->error) != 0)
+  MPI_Comm comm = ranks_.comm;
+  if (plugin_->initialize(absolute.c_str(), folder.c_str(), runName.c_str(), ranks_.size > 1 ? &comm : nullptr,
+                          plugin_->error, sizeof plugin_->error) != 0)
     throw CaseError("catalyst: script " + script + " " + plugin_->error);
   plugin_->running = true;
 }
@@ -76,13 +80,16 @@ Catalyst::~Catalyst() {
   if (plugin_ && plugin_->running) plugin_->finalize();
 }
 
+// On several ranks a failure on any rank is every rank's (one reduction),
+// so that no rank goes on into a collective call the others left.
 template <int D>
 std::string Catalyst::offer(const Particles<D>& P, const SnapshotInfo& info, bool last) {
   const int wanted = plugin_->request(info.time, info.step, last ? 1 : 0, plugin_->error, sizeof plugin_->error);
-  if (wanted < 0) return plugin_->error;
+  if (mpi::allMax(ranks_, wanted < 0 ? 1 : 0)) return wanted < 0 ? plugin_->error : "failed on another MPI rank";
   if (wanted == 0) return "";
   const vtkSmartPointer<vtkPolyData> poly = snapshotPolyData<D>(P, info);
-  if (plugin_->coprocess(poly.GetPointer(), plugin_->error, sizeof plugin_->error) != 0) return plugin_->error;
+  const int failed = plugin_->coprocess(poly.GetPointer(), plugin_->error, sizeof plugin_->error) != 0;
+  if (mpi::allMax(ranks_, failed)) return failed ? plugin_->error : "failed on another MPI rank";
   return "";
 }
 

@@ -25,6 +25,7 @@
 #include <vtkCPPipeline.h>
 #include <vtkCPProcessor.h>
 #include <vtkFieldData.h>
+#include <vtkMPI.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPolyData.h>
@@ -239,15 +240,16 @@ extern "C" {
 
 int sph_catalyst_abi(void) { return SPH_CATALYST_ABI; }
 
-int sph_catalyst_initialize(const char* script, const char* run_folder, const char* run_name, char* error,
-                            size_t size) {
+int sph_catalyst_initialize(const char* script, const char* run_folder, const char* run_name, void* mpi_comm,
+                            char* error, size_t size) {
   if (session) {
     setError(error, size, "Catalyst is already running in this process");
     return -1;
   }
   auto s = new Session;
   s->processor = vtkSmartPointer<vtkCPProcessor>::New();
-  if (!s->processor->Initialize()) {
+  vtkMPICommunicatorOpaqueComm ranks(static_cast<MPI_Comm*>(mpi_comm));
+  if (!(mpi_comm ? s->processor->Initialize(ranks) : s->processor->Initialize())) {
     delete s;
     setError(error, size, "ParaView's Catalyst could not be initialised");
     return -1;

@@ -63,6 +63,10 @@ void writePvtpSummary(const std::string& pvtpPath, const Particles<D>& P, const 
     poly = one;
   }
   vtkNew<SummaryOnlyWriter> writer;
+  // Rank 0 alone writes the summary: no controller (Catalyst on several
+  // ranks sets VTK's global one to MPI, whose writer would wait for the
+  // other ranks).
+  writer->SetController(nullptr);
   writer->SetFileName(pvtpPath.c_str());  // names the pieces; the text goes to a string
   writer->SetInputData(poly);
   writer->SetNumberOfPieces(pieces);

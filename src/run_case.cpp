@@ -34,18 +34,8 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   // Several MPI ranks (docs/developer/mpi.md): every rank read the same case
   // and built the same particles; the scene keeps each rank's share. Only
   // rank 0 writes (but the snapshot pieces) and prints (main gives the other
-  // ranks silent streams). What is not wired for ranks yet is refused here,
-  // on every rank alike, before anything is written.
+  // ranks silent streams).
   const mpi::Communicator& comm = mpi::world();
-  if (comm.size > 1) {
-    std::string refused;
-    if (!c.catalyst.empty()) refused = "--catalyst";
-    if (!refused.empty()) {
-      err << "sph: error: " << refused << " runs on one MPI rank so far (started on " << comm.size
-          << " ranks; run it without mpirun, or with mpirun -n 1)\n";
-      return kBadInput;
-    }
-  }
 
   const std::size_t n = init.particles.size();
   // Particles the reflecting walls will move on the first step (a note).
@@ -86,7 +76,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   std::unique_ptr<Catalyst> catalyst;
   if (!c.catalyst.empty()) {
     try {
-      catalyst = std::make_unique<Catalyst>(c.catalyst, c.output, c.name);
+      catalyst = std::make_unique<Catalyst>(c.catalyst, c.output, c.name, comm);
     } catch (const CaseError& e) {
       err << "sph: error: " << escapeControl(e.what()) << "\n";
       return kBadInput;

@@ -455,13 +455,6 @@ BOOST_AUTO_TEST_CASE(surface_tension_on_ranks) {
 }
 
 BOOST_AUTO_TEST_CASE(what_runs_on_one_rank_only_is_refused_in_one_line) {
-  const auto dir = sph::test::scratchDir("refused");
-  const auto script = std::filesystem::path(sph::test::caseFile("dam_break")).parent_path().parent_path() /
-                      "paraview" / "catalyst_png.py";
-  const auto live = runRanks(2, runArgs("dam_break", dir / "live", "0.01", {"--catalyst", script.string()}));
-  BOOST_TEST(live.exitCode == 2, live.output);
-  BOOST_TEST(live.output.find("--catalyst runs on one MPI rank so far") != std::string::npos, live.output);
-  BOOST_TEST(!std::filesystem::exists(dir / "live"));
   const auto check = runRanks(2, {"check", sph::test::caseFile("dam_break")});
   BOOST_TEST(check.exitCode == 2, check.output);
   BOOST_TEST(check.output.find("only 'sph run' runs on several") != std::string::npos, check.output);

@@ -10,6 +10,8 @@
 
 #include "sph/io/vtp_io.hpp"
 
+#include "sph/mpi/session.hpp"
+
 #include <memory>
 #include <string>
 
@@ -21,7 +23,9 @@ class Catalyst {
   // and the script. Throws CaseError, one line naming the key `catalyst`
   // and the file, when the script is missing, not a file, not Python, not a
   // Catalyst script or fails to load, or when the plugin cannot be loaded.
-  Catalyst(const std::string& script, const std::string& runFolder, const std::string& runName);
+  // On several MPI ranks every rank constructs it with the run's ranks.
+  Catalyst(const std::string& script, const std::string& runFolder, const std::string& runName,
+           const mpi::Communicator& ranks = {});
   ~Catalyst();
   Catalyst(const Catalyst&) = delete;
   Catalyst& operator=(const Catalyst&) = delete;
@@ -37,6 +41,7 @@ class Catalyst {
   struct Plugin;
   std::unique_ptr<Plugin> plugin_;
   std::string script_;
+  mpi::Communicator ranks_;
 };
 
 // Where sph looks for libsph_catalyst.so.

@@ -8,7 +8,7 @@
 
 #include <stddef.h>
 
-#define SPH_CATALYST_ABI 1
+#define SPH_CATALYST_ABI 2
 
 #ifdef __cplusplus
 extern "C" {
@@ -21,9 +21,12 @@ int sph_catalyst_abi(void);
  * legacy ("Catalyst 1") pipeline script: it must parse and define
  * RequestDataDescription(datadescription) and DoCoProcessing(datadescription).
  * The script finds run_folder and run_name as string arrays of
- * datadescription.GetUserData(). 0 on success. */
-int sph_catalyst_initialize(const char* script, const char* run_folder, const char* run_name, char* error,
-                            size_t size);
+ * datadescription.GetUserData(). mpi_comm: NULL on one process, else the
+ * address of the MPI_Comm of the run's ranks (every rank calls every
+ * function below in the same order; each hands its own particles, and
+ * ParaView sees them as one data set of one piece per rank). 0 on success. */
+int sph_catalyst_initialize(const char* script, const char* run_folder, const char* run_name, void* mpi_comm,
+                            char* error, size_t size);
 
 /* Asks the script whether it wants the particles at this time and step
  * (last: the run's last step, Catalyst's ForceOutput): 1 yes, 0 no. */
