@@ -99,7 +99,15 @@ def _build(grid, datadescription):
     arr = pd.GetArray(FIELD)
     ncomp = arr.GetNumberOfComponents()
     unit = arr.GetInformation().Get(arr.UNITS_LABEL())
-    info = render.RunInfo(None, polydata=grid)
+    # On several ranks the domain, when the particles do not carry it (no
+    # walls), is the box around every rank's particles: one camera for all.
+    fields, local = render.polydata_field_data(grid)
+    override = None
+    if _ranks() is not None and "domain_bounds" not in fields and \
+            "domain_min" not in fields:
+        inf = float("inf")
+        override = _all_ranks(local or (inf, -inf) * 3)
+    info = render.RunInfo(None, bounds_override=override, polydata=grid)
     pv.LoadPalette("WhiteBackground")
     producer = pv.PVTrivialProducer(registrationName="input")
     producer.GetClientSideObject().SetOutput(grid, datadescription.GetTime())
@@ -132,21 +140,31 @@ def _build(grid, datadescription):
                          datadescription, "run_name")))
 
 
-def _all_ranks(lo_hi):
-    """(lo, hi) over every MPI rank of the run (sph on several ranks: each
-    rank's particles are its own piece, and each rank's range its own)."""
-    from vtkmodules.vtkParallelCore import vtkCommunicator, \
-        vtkMultiProcessController
-    from vtkmodules.vtkCommonCore import vtkDoubleArray
+def _ranks():
+    """VTK's global controller when sph runs on several MPI ranks (each
+    rank's particles are its own piece), else None."""
+    from vtkmodules.vtkParallelCore import vtkMultiProcessController
     ranks = vtkMultiProcessController.GetGlobalController()
     if ranks is None or ranks.GetNumberOfProcesses() < 2:
-        return lo_hi
+        return None
+    return ranks
+
+
+def _all_ranks(lo_hi):
+    """(lo, hi) pairs, flat (lo0, hi0, lo1, hi1, ...), reduced over every
+    MPI rank of the run: the lowest lo and the highest hi of each pair."""
+    ranks = _ranks()
+    if ranks is None:
+        return tuple(lo_hi)
+    from vtkmodules.vtkParallelCore import vtkCommunicator
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
     mine, every = vtkDoubleArray(), vtkDoubleArray()
-    mine.SetNumberOfTuples(2)
-    mine.SetValue(0, -lo_hi[0])
-    mine.SetValue(1, lo_hi[1])
+    mine.SetNumberOfTuples(len(lo_hi))
+    for k, v in enumerate(lo_hi):
+        mine.SetValue(k, -v if k % 2 == 0 else v)
     ranks.AllReduce(mine, every, vtkCommunicator.MAX_OP)
-    return -every.GetValue(0), every.GetValue(1)
+    return tuple(-every.GetValue(k) if k % 2 == 0 else every.GetValue(k)
+                 for k in range(len(lo_hi)))
 
 
 def DoCoProcessing(datadescription):
@@ -163,8 +181,14 @@ def DoCoProcessing(datadescription):
     if RANGE:
         lo, hi = RANGE
     else:
-        lo, hi = render.readable_range(*_all_ranks(render.data_range(
-            p["particles"], FIELD, "Magnitude", [time])))
+        try:
+            mine = render.data_range(p["particles"], FIELD, "Magnitude", [time])
+        except render.RenderError:   # no fluid here: perhaps on another rank
+            mine = (float("inf"), float("-inf"))
+        lo, hi = _all_ranks(mine)
+        if lo > hi:
+            raise RuntimeError("no values of '%s' to colour by" % FIELD)
+        lo, hi = render.readable_range(lo, hi)
     p["lut"].RescaleTransferFunction(lo, hi)
     pv.GetOpacityTransferFunction(FIELD).RescaleTransferFunction(lo, hi)
     p["lut"].AutomaticRescaleRangeMode = "Never"

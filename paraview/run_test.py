@@ -74,17 +74,27 @@ def log(msg):
 
 
 def run(cmd, expect_ok=True, env=None, timeout=120):
+    """Run cmd in a session of its own: past the timeout the whole group
+    (xvfb-run, Xvfb, mpirun, sph) is killed, not xvfb-run alone."""
+    import signal
     log("$ " + " ".join(cmd))
     t0 = time.time()
-    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                       universal_newlines=True, env=env, timeout=timeout)
-    out = r.stdout
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                         universal_newlines=True, env=env,
+                         start_new_session=True)
+    try:
+        out, _ = p.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        out, _ = p.communicate()
+        log(out.rstrip())
+        raise TestFailure("timed out after %d s: %s" % (timeout, " ".join(cmd)))
     log(out.rstrip() + ("\n" if out.strip() else "") +
-        "(exit %d, %.1f s)" % (r.returncode, time.time() - t0))
-    if expect_ok and r.returncode != 0:
+        "(exit %d, %.1f s)" % (p.returncode, time.time() - t0))
+    if expect_ok and p.returncode != 0:
         raise TestFailure("command failed with exit status %d: %s"
-                          % (r.returncode, " ".join(cmd)))
-    return r.returncode, out
+                          % (p.returncode, " ".join(cmd)))
+    return p.returncode, out
 
 
 X_FAILURES = ("Xvfb failed to start", "bad X server connection",
@@ -487,7 +497,7 @@ def add_overwrite(cmd):
         cmd.append("--overwrite")
 
 
-def xvfb_sph(e, args, env=None, timeout=300):
+def xvfb_sph(e, args, env=None, timeout=200):
     """sph under xvfb()."""
     return xvfb(e, [e.a.sph] + args, env=env, timeout=timeout,
                 before_retry=add_overwrite)
@@ -548,7 +558,7 @@ def t_catalyst_ranks(e):
     env = dict(os.environ, SPH_CATALYST_SIZE=" ".join(size))
     common = ["--end_time", "0.01", "--no-progress", "--catalyst", CATALYST_PNG, "--catalyst_every", "100"]
     one = os.path.join(e.work, "one")
-    code, _ = xvfb_sph(e, ["run", case_path("dam_break"), "--output", one] + common, env=env)
+    code, _ = xvfb_sph(e, ["run", case_path("dam_break"), "--output", one] + common, env=env, timeout=60)
     if code != 0:
         raise TestFailure("sph run --catalyst on one rank failed (exit %d)" % code)
     two = os.path.join(e.work, "two")
@@ -556,7 +566,7 @@ def t_catalyst_ranks(e):
     if hasattr(os, "geteuid") and os.geteuid() == 0:
         launcher.insert(1, "--allow-run-as-root")
     code, _ = xvfb(e, launcher + [e.a.sph, "run", case_path("dam_break"), "--output", two] + common,
-                   env=env, timeout=300, before_retry=add_overwrite)
+                   env=env, timeout=60, before_retry=add_overwrite)
     if code != 0:
         raise TestFailure("sph run --catalyst on 2 ranks failed (exit %d)" % code)
     folder, pngs = catalyst_pngs(two, "dam_break", 3)

@@ -24,6 +24,7 @@ struct Catalyst::Plugin {
   void (*finalize)() = nullptr;
   bool running = false;
   char error[1024] = {};
+  MPI_Comm comm = MPI_COMM_NULL;  // several ranks: Catalyst's duplicate of the run's
 };
 
 std::string catalystPluginPath() {
@@ -68,9 +69,11 @@ Catalyst::Catalyst(const std::string& script, const std::string& runFolder, cons
   symbol(plugin_->handle, "sph_catalyst_finalize", plugin_->finalize, path);
   const std::string absolute = std::filesystem::absolute(script, ec).lexically_normal().string();
   const std::string folder = std::filesystem::absolute(runFolder, ec).lexically_normal().string();
-  MPI_Comm comm = ranks_.comm;
-  if (plugin_->initialize(absolute.c_str(), folder.c_str(), runName.c_str(), ranks_.size > 1 ? &comm : nullptr,
-                          plugin_->error, sizeof plugin_->error) != 0)
+  // Catalyst's own duplicate of the run's communicator: a collective call
+  // of ParaView's can never be matched with one of sph's.
+  if (ranks_.size > 1) MPI_Comm_dup(ranks_.comm, &plugin_->comm);
+  if (plugin_->initialize(absolute.c_str(), folder.c_str(), runName.c_str(),
+                          ranks_.size > 1 ? &plugin_->comm : nullptr, plugin_->error, sizeof plugin_->error) != 0)
     throw CaseError("catalyst: script " + script + " " + plugin_->error);
   plugin_->running = true;
 }
@@ -78,14 +81,19 @@ Catalyst::Catalyst(const std::string& script, const std::string& runFolder, cons
 Catalyst::~Catalyst() {
   // The plugin stays loaded: ParaView and Python do not unload cleanly.
   if (plugin_ && plugin_->running) plugin_->finalize();
+  if (plugin_ && plugin_->comm != MPI_COMM_NULL) MPI_Comm_free(&plugin_->comm);
 }
 
-// On several ranks a failure on any rank is every rank's (one reduction),
-// so that no rank goes on into a collective call the others left.
+// On several ranks every rank hands its particles when any rank's script
+// wants them, and a failure on any rank is every rank's (a reduction after
+// the request and one after the hand-over), so that the ranks stay in
+// step. (A script that raises on one rank in the middle of one of
+// ParaView's collective calls still leaves the others waiting in it.)
 template <int D>
 std::string Catalyst::offer(const Particles<D>& P, const SnapshotInfo& info, bool last) {
-  const int wanted = plugin_->request(info.time, info.step, last ? 1 : 0, plugin_->error, sizeof plugin_->error);
-  if (mpi::allMax(ranks_, wanted < 0 ? 1 : 0)) return wanted < 0 ? plugin_->error : "failed on another MPI rank";
+  const int answer = plugin_->request(info.time, info.step, last ? 1 : 0, plugin_->error, sizeof plugin_->error);
+  const int wanted = mpi::allMax(ranks_, answer < 0 ? 2 : answer);  // 2: failed, 1: wanted, 0: not
+  if (wanted == 2) return answer < 0 ? plugin_->error : "failed on another MPI rank";
   if (wanted == 0) return "";
   const vtkSmartPointer<vtkPolyData> poly = snapshotPolyData<D>(P, info);
   const int failed = plugin_->coprocess(poly.GetPointer(), plugin_->error, sizeof plugin_->error) != 0;

@@ -301,7 +301,7 @@ BOOST_AUTO_TEST_CASE(the_work_is_shared_out_evenly_without_changing_the_results)
 // The time and messages of communication a step (run.json's
 // communication_per_step, the summary's line), told apart by kind, and
 // consistent with one another: the parts add up to what each rank spent;
-// the rank that spent least spent no more than the mean; the bytes a
+// every rank spent some; the bytes a
 // refresh sends over the ranks are the halo particles received times one
 // record (counted from the send lists; the halo fraction from the halo
 // count), so a record of 8 to 400 bytes (one double to every field); the
@@ -323,9 +323,8 @@ BOOST_AUTO_TEST_CASE(time_communicating_is_measured_and_told_apart) {
     const double stepSeconds = j.at("summary").at("stepping_seconds").get<double>() / j.at("summary").at("steps").get<double>();
     BOOST_TEST(halo > 0);
     BOOST_TEST(reductions > 0);
-    BOOST_TEST(resort >= 0);
     BOOST_TEST(halo + reductions + resort < stepSeconds);
-    BOOST_TEST(least <= halo + reductions + resort);
+    BOOST_TEST(least > 0);  // every rank refreshes its halo and reduces
     BOOST_TEST(perStep >= 1);  // the time step at least
     BOOST_TEST(refreshes >= 1);
     const double f = j.at("halo_fraction");
@@ -444,7 +443,6 @@ BOOST_AUTO_TEST_CASE(sigterm_to_one_rank_stops_every_rank) {
   BOOST_TEST(resumed.exitCode == 0, resumed.output);
 }
 
-// Not wired for ranks yet: one line, exit 2, nothing written.
 // Surface tension: the colour field's normals (and, corrected, the
 // curvatures) of the halo particles refreshed between the pass's loops,
 // inside its parallel region (Particles::refreshGhostsAndHalosInTeam). The
@@ -454,6 +452,7 @@ BOOST_AUTO_TEST_CASE(surface_tension_on_ranks) {
   compareWithOneRank("droplet_oscillation", "0.02", {2});
 }
 
+// What runs on one rank only: one line, exit 2, nothing written.
 BOOST_AUTO_TEST_CASE(what_runs_on_one_rank_only_is_refused_in_one_line) {
   const auto check = runRanks(2, {"check", sph::test::caseFile("dam_break")});
   BOOST_TEST(check.exitCode == 2, check.output);
