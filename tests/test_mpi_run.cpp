@@ -339,6 +339,10 @@ BOOST_AUTO_TEST_CASE(time_communicating_is_measured_and_told_apart) {
   BOOST_TEST(fraction[1] > fraction[0]);
 }
 
+// A moving wall: the wave paddle's wall particles move with the paddle and
+// are shared out and migrate like any other particle (0.1 s: 400 steps).
+BOOST_AUTO_TEST_CASE(wave_paddle_on_2_and_3_ranks) { compareWithOneRank("wave_paddle", "0.1", {2, 3}); }
+
 BOOST_AUTO_TEST_CASE(hydrostatic_tank_3d_on_2_3_4_ranks) {
   compareWithOneRank("hydrostatic_tank_3d", "0.02", {2, 3, 4});
 }
