@@ -89,7 +89,6 @@ int measure(const sph::mpi::Communicator& c, const std::string& file, sph::Real 
   return 0;
 }
 
-
 }  // namespace
 
 int main(int argc, char** argv) {

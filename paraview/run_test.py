@@ -570,6 +570,18 @@ def t_catalyst_ranks(e):
     if code != 0:
         raise TestFailure("sph run --catalyst on 2 ranks failed (exit %d)" % code)
     folder, pngs = catalyst_pngs(two, "dam_break", 3)
+    # The plugin missing on one rank only (mpirun's MPMD form: rank 1 gets
+    # another SPH_CATALYST_PLUGIN): every rank stops before the run, within
+    # the timeout, exit 2, one error line, no folder. (It hung in the
+    # collective calls of Catalyst's start before the ranks agreed first.)
+    lonely = os.path.join(e.work, "lonely")
+    args = [e.a.sph, "run", case_path("dam_break"), "--output", lonely] + common
+    code, out = run(launcher[:-1] + ["1"] + args + [":", "-n", "1", "-x", "SPH_CATALYST_PLUGIN=/nonexistent.so"] + args,
+                    expect_ok=False, env=env, timeout=60)
+    errors = [l for l in out.splitlines() if l.startswith("sph: error:")]
+    if code != 2 or len(errors) != 1 or "catalyst" not in errors[0] or os.path.exists(lonely):
+        raise TestFailure("a plugin missing on one rank: expected exit 2, one error line naming catalyst "
+                          "and no folder; got exit %d, %d error line(s)" % (code, len(errors)))
     import check_png
     for name in pngs:
         e.check(os.path.join(folder, name), "--size", *size, "--time-text",

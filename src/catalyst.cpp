@@ -42,15 +42,14 @@ void symbol(void* handle, const char* name, F& f, const std::string& path) {
 }
 }  // namespace
 
-Catalyst::Catalyst(const std::string& script, const std::string& runFolder, const std::string& runName,
-                   const mpi::Communicator& ranks)
-    : plugin_(std::make_unique<Plugin>()), script_(script), ranks_(ranks) {
+// The checks and loading each process makes alone (throws CaseError).
+void Catalyst::loadPlugin() {
   std::error_code ec;
-  if (!std::filesystem::exists(script, ec))
-    throw CaseError("catalyst: script " + script + " does not exist");
-  if (!std::filesystem::is_regular_file(script, ec))
-    throw CaseError("catalyst: " + script + " is not a file (a Catalyst pipeline script, .py)");
-  if (access(script.c_str(), R_OK) != 0) throw CaseError("catalyst: script " + script + " cannot be read");
+  if (!std::filesystem::exists(script_, ec))
+    throw CaseError("catalyst: script " + script_ + " does not exist");
+  if (!std::filesystem::is_regular_file(script_, ec))
+    throw CaseError("catalyst: " + script_ + " is not a file (a Catalyst pipeline script, .py)");
+  if (access(script_.c_str(), R_OK) != 0) throw CaseError("catalyst: script " + script_ + " cannot be read");
   const std::string path = catalystPluginPath();
   // RTLD_GLOBAL: Python's extension modules, imported later by the
   // script, take the interpreter's symbols from the global scope.
@@ -67,6 +66,29 @@ Catalyst::Catalyst(const std::string& script, const std::string& runFolder, cons
   symbol(plugin_->handle, "sph_catalyst_request", plugin_->request, path);
   symbol(plugin_->handle, "sph_catalyst_coprocess", plugin_->coprocess, path);
   symbol(plugin_->handle, "sph_catalyst_finalize", plugin_->finalize, path);
+}
+
+// On several ranks: every rank throws when any rank failed (this one's
+// message, or "on another MPI rank"), so that none goes on alone into the
+// collective calls that follow (MPI_Comm_dup, ParaView's start). A rank
+// that started Catalyst and throws here leaves it unfinished: its finish
+// would wait for the ranks that have none.
+void Catalyst::agree(const std::string& failure) const {
+  if (mpi::allMax(ranks_, failure.empty() ? 0 : 1) == 0) return;
+  throw CaseError(failure.empty() ? "catalyst: script " + script_ + " failed to load on another MPI rank" : failure);
+}
+
+Catalyst::Catalyst(const std::string& script, const std::string& runFolder, const std::string& runName,
+                   const mpi::Communicator& ranks)
+    : plugin_(std::make_unique<Plugin>()), script_(script), ranks_(ranks) {
+  std::string failure;
+  try {
+    loadPlugin();
+  } catch (const CaseError& e) {
+    failure = e.what();
+  }
+  agree(failure);
+  std::error_code ec;
   const std::string absolute = std::filesystem::absolute(script, ec).lexically_normal().string();
   const std::string folder = std::filesystem::absolute(runFolder, ec).lexically_normal().string();
   // Catalyst's own duplicate of the run's communicator: a collective call
@@ -74,7 +96,8 @@ Catalyst::Catalyst(const std::string& script, const std::string& runFolder, cons
   if (ranks_.size > 1) MPI_Comm_dup(ranks_.comm, &plugin_->comm);
   if (plugin_->initialize(absolute.c_str(), folder.c_str(), runName.c_str(),
                           ranks_.size > 1 ? &plugin_->comm : nullptr, plugin_->error, sizeof plugin_->error) != 0)
-    throw CaseError("catalyst: script " + script + " " + plugin_->error);
+    failure = "catalyst: script " + script + " " + plugin_->error;
+  agree(failure);
   plugin_->running = true;
 }
 

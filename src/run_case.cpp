@@ -73,23 +73,13 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   // The Catalyst script, when given: loaded (ParaView's start-up) after the
   // case's own checks and before anything is written, so that a missing or
   // broken script is refused with no folder made.
-  // On several ranks every rank loads it; one that fails stops them all
-  // (those that loaded it leave it without finishing it: its finish would
-  // wait for the rank that has none).
+  // On several ranks every rank loads it, and fails when any rank fails.
   std::unique_ptr<Catalyst> catalyst;
   if (!c.catalyst.empty()) {
-    int failed = 0;
     try {
       catalyst = std::make_unique<Catalyst>(c.catalyst, c.output, c.name, comm);
     } catch (const CaseError& e) {
       err << "sph: error: " << escapeControl(e.what()) << "\n";
-      failed = 1;
-    }
-    if (mpi::allMax(comm, failed)) {
-      if (!failed) {
-        err << "sph: error: catalyst: script " << escapeControl(c.catalyst) << " failed to load on another MPI rank\n";
-        (void)catalyst.release();
-      }
       return kBadInput;
     }
   }

@@ -181,14 +181,14 @@ void RunReport::finish(const Scene<D>& scene, const ResolvedCase& c, const RunTo
                       static_cast<double>(spent.haloRefreshes),
                       spent.haloBytesSent};
     mpi::allSum(comm, sums, 8);
-    const double perStep = done > 0 ? 1.0 / (static_cast<double>(comm.size) * static_cast<double>(done)) : 0;
-    record.haloSecondsPerStep = sums[0] * perStep;
-    record.reductionSecondsPerStep = sums[1] * perStep;
-    record.resortSecondsPerStep = sums[2] * perStep;
-    record.reductionsPerStep = sums[3] * perStep;
+    const double perRankStep = done > 0 ? 1.0 / (static_cast<double>(comm.size) * static_cast<double>(done)) : 0;
+    record.haloSecondsPerStep = sums[0] * perRankStep;
+    record.reductionSecondsPerStep = sums[1] * perRankStep;
+    record.resortSecondsPerStep = sums[2] * perRankStep;
+    record.reductionsPerStep = sums[3] * perRankStep;
     record.haloFraction = sums[5] > 0 ? sums[4] / sums[5] : 0;
-    record.haloRefreshesPerStep = sums[6] * perStep;
-    record.haloBytesPerStep = sums[7] * perStep;
+    record.haloRefreshesPerStep = sums[6] * perRankStep;
+    record.haloBytesPerStep = sums[7] * perRankStep;
     // The rank that communicated least is the one the others waited for:
     // its time is about what the messages cost without waiting.
     record.leastCommunicationSecondsPerStep =

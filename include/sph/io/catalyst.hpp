@@ -39,6 +39,8 @@ class Catalyst {
 
  private:
   struct Plugin;
+  void loadPlugin();
+  void agree(const std::string& failure) const;
   std::unique_ptr<Plugin> plugin_;
   std::string script_;
   mpi::Communicator ranks_;
