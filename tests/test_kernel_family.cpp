@@ -322,6 +322,30 @@ BOOST_AUTO_TEST_CASE_TEMPLATE(gradW_matches_finite_difference, K, AllKernels) {
   }
 }
 
+// dWdr_r, the (dW/dr) / r the pair loop forms for every pair (written
+// without the division where dW/dr carries a factor r: Wendland C2, the
+// Gaussian, the cubic spline's inner part), is dW/dr divided by r: at 200
+// radii across the support to 1e-13 relative (a few roundings apart), 0 at
+// and beyond the support, and finite at r = 0, where it is the limit the
+// division takes at r = 1e-9 h (to 1e-8 relative: the kernels are smooth
+// in r^2 there; Mueller's spiky derivative has no finite limit, so the
+// default form itself stands at r = 0).
+BOOST_AUTO_TEST_CASE_TEMPLATE(dWdr_over_r_is_dWdr_divided_by_r, K, AllKernels) {
+  const Real h = 0.2;
+  const K k(h);
+  for (int s = 1; s < 200; ++s) {
+    const Real r = k.support() * s / 200.0;
+    BOOST_TEST_INFO(K::name << " D=" << K::dim << " r/support=" << s / 200.0);
+    BOOST_TEST(k.dWdr_r(r) == k.dWdr(r) / r, boost::test_tools::tolerance(1e-13));
+    BOOST_TEST(k.dWdr_r(r) < 0);
+  }
+  BOOST_TEST(k.dWdr_r(k.support()) == 0);
+  BOOST_TEST(k.dWdr_r(2 * k.support()) == 0);
+  const Real tiny = 1e-9 * h;
+  BOOST_TEST(std::isfinite(k.dWdr_r(0)));
+  BOOST_TEST(k.dWdr_r(0) == k.dWdr(tiny) / tiny, boost::test_tools::tolerance(1e-8));
+}
+
 // laplacianW against the Cartesian 2D+1-point finite-difference Laplacian of
 // L = W (viscosityW for Mueller), e = 1e-4 h, at radii where it is the true,
 // smooth Laplacian (see kLaplacianFractions). Error: truncation e^2/12 |L''''|

@@ -161,7 +161,7 @@ class NeighbourList {
 
   // Call f(j) for every neighbour j of particle i (fluid ones first).
   template <class F>
-  void forEach(std::size_t i, F&& f) const {
+  [[gnu::always_inline]] void forEach(std::size_t i, F&& f) const {
     const Run r = run(i);
     for (std::uint32_t k = r.begin; k < r.end; ++k) f(r.list[k]);
   }
@@ -169,7 +169,7 @@ class NeighbourList {
   // Call f(j) for the fluid neighbours of i, then g(j) for its wall
   // neighbours (none without walls).
   template <class F, class G>
-  void forEachByKind(std::size_t i, F&& f, G&& g) const {
+  [[gnu::always_inline]] void forEachByKind(std::size_t i, F&& f, G&& g) const {
     const Run r = run(i);
     for (std::uint32_t k = r.begin; k < r.split; ++k) f(r.list[k]);
     for (std::uint32_t k = r.split; k < r.end; ++k) g(r.list[k]);

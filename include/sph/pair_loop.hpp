@@ -46,6 +46,7 @@
 
 #include <tuple>
 #include <type_traits>
+#include <vector>
 
 namespace sph {
 
@@ -148,11 +149,11 @@ template <int D, class Kernel, class Correction = NoGradientCorrection>
   c.r = c.rij.norm();
   c.q = c.r * invSupport;
   if constexpr (!std::is_same_v<Kernel, NoPairKernel>) {
-    // At r = 0 (coincident particles) grad W is 0 and dW/dr / r takes its
-    // limit, so that Laplacian-type terms stay finite.
-    const Real r = c.r > 0 ? c.r : 1e-9 * kernel.h();
-    c.dWdr_r = kernel.dWdr(r) / r;
-    c.gradW = c.r > 0 ? Vec<D>(c.dWdr_r * c.rij) : Vec<D>::Zero();
+    // At r = 0 (coincident particles) rij is the zero vector, so grad W is
+    // 0, and dW/dr / r takes its limit (radial_gradient.hpp), so that
+    // Laplacian-type terms stay finite.
+    c.dWdr_r = kernel.dWdr_r(c.r);
+    c.gradW = c.dWdr_r * c.rij;
     c.gradWC = correct(i, c.gradW);
   } else {
     c.dWdr_r = 0;
@@ -162,23 +163,60 @@ template <int D, class Kernel, class Correction = NoGradientCorrection>
   return c;
 }
 
+// Per-particle values the evaluators read at every pair, formed once per
+// particle before the pairs in the loop's parallel region (every particle,
+// ghosts included), so that no pair divides for them: p/rho^2 of the
+// pressure term (symmetric_pressure.hpp) and the volume m/rho of the
+// density diffusion (density_diffusion.hpp). A null array is not formed.
+// The arrays are the pass's, sized to the particles (PairScratch::fit).
+template <int D>
+struct ParticlePrologue {
+  Real* pOverRho2 = nullptr;
+  Real* volume = nullptr;
+  bool active() const { return pOverRho2 || volume; }
+  void operator()(std::size_t i, const Particles<D>& P) const {
+    if (pOverRho2) pOverRho2[i] = P.p[i] / (P.rho[i] * P.rho[i]);
+    if (volume) volume[i] = P.m[i] / P.rho[i];
+  }
+};
+
+// The arrays of a ParticlePrologue, kept by a pass between its runs (so the
+// step loop does not allocate once they have grown to the particle count).
+struct PairScratch {
+  std::vector<Real> pOverRho2, volume;
+  // The prologue of a run over n particles (ghosts included): the arrays
+  // asked for, sized to n.
+  template <int D>
+  ParticlePrologue<D> fit(std::size_t n, bool pressure, bool diffusion) {
+    if (pressure && pOverRho2.size() < n) pOverRho2.resize(n);
+    if (diffusion && volume.size() < n) volume.resize(n);
+    return {pressure ? pOverRho2.data() : nullptr, diffusion ? volume.data() : nullptr};
+  }
+};
+
 // Which parts of the loop run, decided per evaluation.
 struct PairLoopParts {
   bool wallPairs = true;       // fluid particles see their wall neighbours
   bool wallParticles = false;  // wall particles get rates of their own
 };
 
+// No per-particle values before the pairs.
+struct NoPrologue {};
+
 // Returns the term bits of the packs it ran.
+//   prologue(i, P)              per-particle values for the pairs (every
+//                               particle, ghosts included), before any pair
 //   epilogue(i, P, rates)       writes particle i's rates (fluid particles)
 //   wallEpilogue(i, P, rates)   the same for wall particles
 // `correct` corrects the gradients of the fluid particles' pairs (wall
 // particles' own rates use grad W as it is).
 template <int D, class Kernel, class FluidPairs, class WallPairs, class WallParticlePairs, class Epilogue,
-          class WallEpilogue, class Correction = NoGradientCorrection>
+          class WallEpilogue, class Correction = NoGradientCorrection, class Prologue = NoPrologue>
 unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
                      const FluidPairs& fluidPairs, const WallPairs& wallPairs,
                      const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
-                     const WallEpilogue& wallEpilogue, PairLoopParts parts = {}, const Correction& correct = {}) {
+                     const WallEpilogue& wallEpilogue, PairLoopParts parts = {}, const Correction& correct = {},
+                     const Prologue& prologue = {}) {
   const std::size_t n = P.size(), nFluid = P.fluidCount();
   const Real invSupport = 1 / support, support2 = support * support;
   const bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0 && parts.wallParticles && P.hasWalls();
@@ -191,7 +229,18 @@ unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const 
   };
 #pragma omp parallel if (n >= kMinParallelSize)
   {
-    auto fluidParticle = [&](std::size_t i, auto byKind) {
+    if constexpr (!std::is_same_v<Prologue, NoPrologue>) {
+      if (prologue.active()) {
+        const std::size_t total = P.totalSize();
+#pragma omp for schedule(static)
+        for (std::size_t i = 0; i < total; ++i) prologue(i, P);
+      }
+    }
+    // flatten: the whole row (the list's walk, the pair, every evaluator,
+    // the epilogue) in one function, so the particle's sums stay in
+    // registers (an evaluator left out of line takes them by reference,
+    // in memory: a store and a load per pair and rate).
+    auto fluidParticle = [&](std::size_t i, auto byKind) __attribute__((flatten)) {
       PairRates<D> r;
       const Vec<D> xi = P.x[i];
       const auto ii = static_cast<std::uint32_t>(i);
@@ -215,18 +264,19 @@ unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const 
 #pragma omp for schedule(static) nowait
       for (std::size_t i = 0; i < nFluid; ++i) fluidParticle(i, std::false_type{});
     }
+    auto wallParticle = [&](std::size_t i) __attribute__((flatten)) {
+      PairRates<D> r;
+      const Vec<D> xi = P.x[i];
+      const auto ii = static_cast<std::uint32_t>(i);
+      neighbours.forEach(i, [&](std::uint32_t j) {
+        if (beyond(xi, P.x[j])) return;
+        addPair(wallParticlePairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r);
+      });
+      wallEpilogue(i, P, r);
+    };
     if (wallParticles) {
 #pragma omp for schedule(static) nowait
-      for (std::size_t i = nFluid; i < n; ++i) {
-        PairRates<D> r;
-        const Vec<D> xi = P.x[i];
-        const auto ii = static_cast<std::uint32_t>(i);
-        neighbours.forEach(i, [&](std::uint32_t j) {
-          if (beyond(xi, P.x[j])) return;
-          addPair(wallParticlePairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r);
-        });
-        wallEpilogue(i, P, r);
-      }
+      for (std::size_t i = nFluid; i < n; ++i) wallParticle(i);
     }
   }
   unsigned bits = packBits(fluidPairs);

@@ -63,6 +63,15 @@ struct CubicSpline : RadialGradient<CubicSpline<D>, D> {
     return -sigmaGrad_ * Real(0.75) * t * t;
   }
 
+  // (dW/dr) / r: sigma_D / h^(D+2) (9/4 q - 3) inside q < 1, no division
+  // there; dW/dr / r outside (radial_gradient.hpp).
+  Real dWdr_r(Real r) const {
+    if (r >= support_) return 0;
+    const Real q = r * invH_;
+    if (q < 1) return sigmaLap_ * (Real(2.25) * q - 3);
+    return dWdr(r) / r;
+  }
+
   Real laplacianW(Real r) const {
     if (r >= support_) return 0;
     const Real q = r * invH_;

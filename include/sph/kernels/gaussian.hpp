@@ -62,6 +62,12 @@ struct Gaussian : RadialGradient<Gaussian<D>, D> {
     return r < support_ ? -2 * sigmaGrad_ * q * std::exp(-q * q) : 0;
   }
 
+  // (dW/dr) / r = -2 sigma_D / h^(D+2) exp(-q^2): no division (radial_gradient.hpp).
+  Real dWdr_r(Real r) const {
+    const Real q = r * invH_;
+    return r < support_ ? -2 * sigmaLap_ * std::exp(-q * q) : 0;
+  }
+
   Real laplacianW(Real r) const {
     const Real q = r * invH_;
     return r < support_ ? sigmaLap_ * (4 * q * q - 2 * D) * std::exp(-q * q) : 0;

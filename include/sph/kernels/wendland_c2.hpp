@@ -7,6 +7,7 @@
 //   sigma_2 = 7/(4 pi),  sigma_3 = 21/(16 pi)
 //
 //   dW/dr = sigma_D / h^(D+1) * (-5 q) (1 - q/2)^3
+//   dW/dr / r = sigma_D / h^(D+2) * (-5) (1 - q/2)^3
 //   d2W/dr2 = sigma_D / h^(D+2) * 5 (1 - q/2)^2 (2 q - 1)
 //   laplacian W = d2W/dr2 + (D-1)/r dW/dr
 //               = sigma_D / h^(D+2) * 5 (1 - q/2)^2 [(2 q - 1) - (D - 1)(1 - q/2)]
@@ -55,6 +56,13 @@ struct WendlandC2 : RadialGradient<WendlandC2<D>, D> {
     const Real q = r * invH_;
     const Real t = std::max(1 - Real(0.5) * q, Real(0));
     return -5 * sigmaGrad_ * q * t * t * t;
+  }
+
+  // (dW/dr) / r = -5 sigma_D / h^(D+2) (1 - q/2)^3: no division (radial_gradient.hpp).
+  Real dWdr_r(Real r) const {
+    if (r >= support_) return 0;
+    const Real t = std::max(1 - Real(0.5) * (r * invH_), Real(0));
+    return -5 * sigmaLap_ * t * t * t;
   }
 
   Real laplacianW(Real r) const {

@@ -58,7 +58,7 @@ inline Mat<D> cspmMoment(std::size_t i, const Particles<D>& P, const NeighbourLi
     const Real r = rij.norm();
     if (!(r > 0)) return;
     // (x_j - x_i) (x) grad_i W_ij = -(W'/r) rij rij^T
-    M.noalias() -= (P.m[j] / P.rho[j] * kernel.dWdr(r) / r) * (rij * rij.transpose());
+    M.noalias() -= (P.m[j] / P.rho[j] * kernel.dWdr_r(r)) * (rij * rij.transpose());
   };
   if (wallsInSums) neighbours.forEach(i, add);
   else neighbours.forEachByKind(i, add, [](std::uint32_t) {});

@@ -33,6 +33,7 @@ struct DensityRatePass {
   DensityDiffusion<D> diffusion;  // coefficient 0: off
   WallSums walls{};               // wall pairs (inSums), the walls' own rates (densityRates)
   OptionalTerms terms{};          // its density-rate-only ones run here
+  mutable PairScratch scratch{};  // m/rho of every particle for the diffusion (pair_loop.hpp), per run
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
   // run() reads x, m and v (rho for the diffusion, what the optional
@@ -47,15 +48,18 @@ struct DensityRatePass {
 // Defined here, instantiated once (src/instantiate_forces_*.cpp).
 template <int D>
 unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+  const ParticlePrologue<D> prologue = scratch.fit<D>(P.totalSize(), false, diffusion.active());
+  DensityDiffusion<D> diffusionHere = diffusion;
+  diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(
       [&](const auto& k) {
         const ContinuityDensity rate{true};
         return runPairLoop(P, neighbours, k, k.support(),
-                           std::tuple_cat(std::make_tuple(rate, diffusion), densityRateTermEvaluators(terms, k)),
+                           std::tuple_cat(std::make_tuple(rate, diffusionHere), densityRateTermEvaluators(terms, k)),
                            std::make_tuple(rate),
                            std::make_tuple(ContinuityDensity{walls.densityRates}), DensityRateEpilogue<D>{},
                            DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, walls.densityRates},
-                           NoGradientCorrection{});
+                           NoGradientCorrection{}, prologue);
       },
       kernel);
   return bits | (walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u);

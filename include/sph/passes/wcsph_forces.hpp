@@ -92,6 +92,7 @@ struct WcsphForcePass {
   bool cspm = false;                  // CSPM-corrected pressure gradient (needs cspmL)
   std::optional<ColourSurfaceTension<D>> surfaceTension;  // from the colour pre-pass
   OptionalTerms terms{};              // terms/optional_terms.hpp (each off by default)
+  mutable PairScratch scratch{};      // p/rho^2 and m/rho of every particle (pair_loop.hpp), per run
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
   // run() reads x, m, rho and p; v for the viscosity (vWall of the wall
@@ -129,10 +130,12 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   const bool wallRatesHere = walls.densityRates && rateHere;
   DensityDiffusion<D> diffusionHere = diffusion;
   if (!rateHere) diffusionHere.coefficient = 0;
+  const ParticlePrologue<D> prologue = scratch.fit<D>(P.totalSize(), true, diffusionHere.active());
+  diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(
       [&](const auto& k, const auto& visc) {
         using K = std::decay_t<decltype(k)>;
-        const SymmetricPressure pressure{cspm};
+        const SymmetricPressure pressure{cspm, prologue.pOverRho2};
         const GradientCorrection<D> correct{cspm ? P.cspmL.data() : nullptr};
         const ContinuityDensity rate{rateHere};
         const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusionHere, pressure),
@@ -147,7 +150,8 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
                            ForceEpilogue<D, writes, ParticleTermForces<D>>{
                                bodies, xsphEpsilon, rateHere, surfaceTension ? &*surfaceTension : nullptr,
                                ParticleTermForces<D>{terms}},
-                           DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, wallRatesHere}, correct);
+                           DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, wallRatesHere}, correct,
+                           prologue);
       },
       kernel, viscosity);
   const unsigned wallBits = walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;

@@ -68,7 +68,7 @@ template <class Kernel>
 struct ColourKernel {
   Kernel k;
   Real W(Real r) const { return k.W(r); }
-  Real dWdr_r(Real r) const { return r > 0 ? k.dWdr(r) / r : 0; }
+  Real dWdr_r(Real r) const { return r > 0 ? k.dWdr_r(r) : 0; }
   Real laplacian(Real r) const { return k.laplacianW(r); }
 };
 

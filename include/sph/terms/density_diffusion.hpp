@@ -51,10 +51,15 @@ struct DensityDiffusion {
     return d;
   }
 
+  // m/rho of every particle, formed before the pairs (pair_loop.hpp's
+  // ParticlePrologue), or null: formed at each pair.
+  const Real* volume = nullptr;
+
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
     if (coefficient == 0) return;
+    const Real Vj = volume ? volume[c.j] : P.m[c.j] / P.rho[c.j];
     const Real psi = (P.rho[c.j] - P.rho[c.i]) + hydrostatic.dot(c.rij);
-    r.drho += coefficient * P.m[c.j] / P.rho[c.j] * psi * (-c.rij.dot(c.gradW)) / (c.r * c.r + eta2);
+    r.drho += coefficient * Vj * psi * (-c.rij.dot(c.gradW)) / (c.r * c.r + eta2);
   }
 };
 

@@ -36,10 +36,14 @@ struct SymmetricPressure {
   static constexpr unsigned writes = rates::kAcceleration;
   unsigned bits() const { return corrected ? term_bits::kCspmPressure : term_bits::kSymmetricPressure; }
 
+  // p/rho^2 of every particle, formed before the pairs (pair_loop.hpp's
+  // ParticlePrologue), or null: formed at each pair.
+  const Real* pOverRho2 = nullptr;
+
   template <int D>
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
-    const Real pi = P.p[c.i] / (P.rho[c.i] * P.rho[c.i]);
-    const Real pj = P.p[c.j] / (P.rho[c.j] * P.rho[c.j]);
+    const Real pi = pOverRho2 ? pOverRho2[c.i] : P.p[c.i] / (P.rho[c.i] * P.rho[c.i]);
+    const Real pj = pOverRho2 ? pOverRho2[c.j] : P.p[c.j] / (P.rho[c.j] * P.rho[c.j]);
     r.a += (-P.m[c.j] * (pi + pj)) * c.gradWC;
   }
 };
