@@ -10,6 +10,9 @@ scaled together, so neighbours per particle and c0 dt / h stay the case's):
   water 3D  cases/dam_break_3d.case's tank and column with the same water
             physics as water 2D (dummy walls, continuity + delta-SPH, Tait
             c0 = 40, Monaghan 0.02), h = 1.3 dx
+  DSPH-like 2D  water 2D with DualSPHysics' choices for its 2D dam-break
+            validation case: dynamic walls (DBC), h = sqrt(2) dx
+            (--scenarios dsph2d; not in the default set)
 The yardstick (build/sph-yardstick, or build/sph-yardstick-3d for 3D) runs
 interleaved with them at the same N and h/dx.
 
@@ -95,6 +98,14 @@ SCENARIOS = {
     "seed2d": Scenario("seed 2D", 2, "dam_break_seed.case", 0.01 / 0.0075, [], lambda h: 1e-4 * h / 0.01,
                        spacing2d, yardstick_hdx=1.3),
     "water3d": Scenario("water 3D", 3, "dam_break_3d.case", 1.3, WATER_3D, lambda h: 0.15 * h / 40, spacing3d),
+    # The water dam break with DualSPHysics' own choices for its 2D dam-break
+    # validation case (CaseDambreakVal2D, as issue 19 quotes them): dynamic
+    # boundary particles (DBC), h = sqrt(2) dx, Wendland, Monaghan 0.02,
+    # Fourtakas density diffusion 0.1; sph's leap-frog and double precision.
+    # Issue 19 measured DualSPHysics 5.4 CPU on that case at 1.52 M
+    # particle-steps per CPU second on this machine (21 001 particles).
+    "dsph2d": Scenario("DSPH-like 2D", 2, "dam_break.case", 2 ** 0.5, ["--boundary", "dynamic"],
+                       lambda h: 5e-5 * h / 0.015, spacing2d),
 }
 
 
