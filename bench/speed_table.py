@@ -142,8 +142,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--scenarios", default="water2d,seed2d,water3d")
-    ap.add_argument("--n2d", default="20000,200000", help="fluid particles of the 2D scenarios (two sizes)")
-    ap.add_argument("--n3d", default="20000,100000", help="fluid particles of the 3D scenario (two sizes)")
+    ap.add_argument("--n2d", default="20000,200000",
+                    help="fluid particles of the 2D scenarios (two or more sizes, e.g. 1e4,1e5,1e6,1e7 for the "
+                         "linear-cost table; B/p is taken between the first and the last)")
+    ap.add_argument("--n3d", default="20000,100000", help="fluid particles of the 3D scenario (as --n2d)")
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--steps", type=int, default=0, help="steps per run (default: about 4e6 particle-steps)")
@@ -205,7 +207,7 @@ def main():
                 results[r]["ycpu"].append(rate(yn * (steps - 1), ycpu - ycpu1))
                 info[r] = (total, wall, nb, steps, dt, yn, ynb)
     print(f"{'scenario':13s} {'D':>1s} {'N':>7s} {'wall':>6s} {'nbrs':>5s} {'thr':>3s} {'p-s/CPU s':>10s} "
-          f"{'p-s/s':>10s} {'CPU s/sim s':>11s} {'ns/pair':>7s} {'RSS MB':>7s} {'B/p':>5s} {'yardstick':>10s} "
+          f"{'p-s/s':>10s} {'CPU s/sim s':>11s} {'ns/p-s':>6s} {'ns/pair':>7s} {'RSS MB':>7s} {'B/p':>5s} {'yardstick':>10s} "
           f"{'y N':>7s} {'y nbrs':>6s} {'y ns/pair':>9s} {'ratio':>6s}")
     bad = []
     for r in rows:
@@ -228,14 +230,15 @@ def main():
         ns_pair = 1e9 / (cpu * nb) if nb > 0 else float("nan")
         y_ns_pair = 1e9 / (ycpu * ynb) if ynb > 0 else float("nan")
         print(f"{SCENARIOS[s].name + tag:13s} {SCENARIOS[s].dim:1d} {total:7d} {wall:6d} {nb:5.1f} {t:3d} {fmt(cpu):>10s} "
-              f"{fmt(wallps):>10s} {cpu_per_sim:11.1f} {ns_pair:7.1f} {rss / 1e6:7.1f} {bpp:>5s} {fmt(ycpu):>10s} "
+              f"{fmt(wallps):>10s} {cpu_per_sim:11.1f} {1e9 / cpu:6.0f} {ns_pair:7.1f} {rss / 1e6:7.1f} {bpp:>5s} {fmt(ycpu):>10s} "
               f"{yn:7d} {ynb:6.1f} {y_ns_pair:9.1f} {cpu / ycpu:6.2f}")
         figures = [cpu, wallps, ycpu, rss, nb, ynb, cpu_per_sim]
         if not all(math.isfinite(f) and f > 0 for f in figures):
             bad.append(f"{SCENARIOS[s].name}{tag} N={total} threads={t}")
     print("# ratio = sph p-s per CPU s / yardstick p-s per CPU s (the same thread count, interleaved)")
     print("# nbrs: sph's mean neighbours per particle (a wall particle lists only fluid neighbours);"
-          " y nbrs: the yardstick's; ns/pair: CPU ns per particle-step and listed neighbour")
+          " y nbrs: the yardstick's; ns/p-s: CPU ns per particle-step (flat in N when the cost grows"
+          " linearly); ns/pair: CPU ns per particle-step and listed neighbour")
     print("# B/p: growth of the peak RSS per added particle between the scenario's two sizes")
     print("# uptime after:", subprocess.run(["uptime"], stdout=subprocess.PIPE, text=True).stdout.strip())
     if a.check and bad:
