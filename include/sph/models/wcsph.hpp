@@ -27,15 +27,11 @@
 
 #include "sph/boundaries/boundary.hpp"
 #include "sph/models/model.hpp"
+#include "sph/models/wcsph_choices.hpp"
 
 #include <string>
 
 namespace sph {
-
-enum class DensityTreatment { kSummation, kContinuity };
-// Density re-initialisation every N steps (continuity density): none,
-// Shepard (zeroth order) or MLS (first order, Colagrossi & Landrieu 2003).
-enum class DensityReinit { kNone, kShepard, kMls };
 
 // Everything a wcsph model is made of, already resolved from names.
 template <int D>

@@ -29,6 +29,7 @@
 
 #include "sph/boundaries/wall_sums.hpp"
 #include "sph/kernels/kernels.hpp"
+#include "sph/models/wcsph_choices.hpp"
 #include "sph/pair_loop.hpp"
 #include "sph/passes/cspm_correction.hpp"
 #include "sph/passes/seed_forces.hpp"
@@ -48,19 +49,6 @@
 #include <variant>
 
 namespace sph {
-
-struct NoViscosity {};
-struct LaplacianViscosityChoice {
-  Real mu;
-};
-struct MonaghanViscosityChoice {
-  Real alpha, beta;
-};
-struct MorrisViscosityChoice {
-  Real nu;
-};
-using ViscosityChoice =
-    std::variant<NoViscosity, LaplacianViscosityChoice, MonaghanViscosityChoice, MorrisViscosityChoice>;
 
 // The pair evaluator of a viscosity choice for kernel K (none: an empty
 // pack); kWall: for wall neighbours (their vWall), `on` = false: coefficient 0.
