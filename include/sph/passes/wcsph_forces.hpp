@@ -69,6 +69,7 @@ inline std::tuple<MorrisViscosity<K, kWall>> viscosityPack(const K& k, MorrisVis
 
 template <int D>
 struct WcsphForcePass {
+  static constexpr const char* name = "wcsph_forces";
   Kernel<D> kernel;
   ViscosityChoice viscosity;
   BodyForces<D> bodies;
