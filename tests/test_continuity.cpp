@@ -8,6 +8,7 @@
 // - momentum is conserved with continuity and diffusion;
 // - Tait with gamma = 7 by multiplication equals pow(); every EOS inverse
 //   inverts.
+#include "sph/terms/density_diffusion.hpp"
 #include "test_support.hpp"
 
 #include <random>

@@ -13,7 +13,12 @@
 #include "test_support.hpp"
 
 #include "sph/hash_grid.hpp"
-#include "sph/models/passes.hpp"
+#include "sph/passes/colour_field.hpp"
+#include "sph/passes/cspm_correction.hpp"
+#include "sph/passes/mls_density.hpp"
+#include "sph/passes/shepard_density.hpp"
+#include "sph/passes/summation_density.hpp"
+#include "sph/passes/wcsph_forces.hpp"
 #include "sph/periodic_ghosts.hpp"
 
 #include <random>

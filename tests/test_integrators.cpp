@@ -6,6 +6,7 @@
 //   bounded over 1e5 steps for the symplectic schemes, growing for explicit
 //   Euler, decaying at its filter's rate for the two-step leap-frog; RK4's
 //   error falls at fourth order with dt.
+#include "sph/models/wcsph.hpp"
 #include "test_support.hpp"
 
 #include <cmath>

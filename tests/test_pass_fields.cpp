@@ -164,15 +164,12 @@ void checkScene(const std::string& name, const CaseConfig& c) {
   const Model<D>& model = scene.model();
   StepContext ctx{std::max(c.densityReinitEvery, 1L), scene.time(), scene.lastTimeStep().dt};
   int failures = 0, passes = 0;
-  auto check = [&](const std::vector<Pass<D>>& list_, const char* where) {
-    for (const Pass<D>& pass : list_)
+  auto check = [&](const PassList<D>& list_, const char* where) {
+    for (const auto& pass : list_)
       for (bool apart : {false, true}) {
         ctx.densityRateApart = apart;
-        const std::string what = name + " " + where + " pass " + std::to_string(pass.index()) +
-                                 (apart ? " (density rate apart)" : "");
-        failures += checkPass<D>(what, P, passFields(pass, ctx), [&](Particles<D>& Q) {
-          std::visit([&](const auto& p) { p.run(Q, list, ctx); }, pass);
-        });
+        const std::string what = name + " " + where + " pass " + pass->name() + (apart ? " (density rate apart)" : "");
+        failures += checkPass<D>(what, P, pass->fields(ctx), [&](Particles<D>& Q) { pass->run(Q, list, ctx); });
         ++passes;
       }
   };

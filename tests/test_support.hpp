@@ -3,6 +3,7 @@
 #pragma once
 
 #include "cli_support.hpp"
+#include "sph/models/seed_wcsph.hpp"
 #include "sph/scene.hpp"
 
 #include <boost/test/unit_test.hpp>

@@ -9,6 +9,7 @@
 // test_tensile.cpp.)
 #include "pvd_reader.hpp"
 #include "test_support.hpp"
+#include "sph/terms/colour_surface_tension.hpp"
 
 #include <vtkDataArray.h>
 #include <vtkPointData.h>

@@ -5,6 +5,7 @@
 // at every face, corner and an obstacle stays in (the wall guard).
 #include "test_support.hpp"
 
+#include "sph/boundaries/dummy_adami2012.hpp"
 #include "sph/wall_particles.hpp"
 
 #include <algorithm>

@@ -19,8 +19,7 @@
 #include "sph/boundaries/repulsive_boundary.hpp"
 #include "sph/integrators/integrators.hpp"
 #include "sph/kernels/kernels.hpp"
-#include "sph/models/wcsph.hpp"
-#include "sph/passes/wcsph_forces.hpp"
+#include "sph/models/wcsph_choices.hpp"
 #include "sph/terms/equation_of_state.hpp"
 
 #include <cmath>

@@ -2,7 +2,9 @@
 // viscosity, body forces and integrator, built from the method tables of
 // methods.hpp (the one place a method is registered). A choice set to "none"
 // (or a coefficient of 0) constructs nothing. Call with a validated case
-// whose defaults are filled in (a ResolvedCase, from withDefaults).
+// whose defaults are filled in (a ResolvedCase, from withDefaults). The
+// model and the scene are built in src/model_registry.cpp, the one place
+// that includes both presets (models/*.hpp) for them.
 #pragma once
 
 #include "sph/case_config.hpp"
@@ -56,32 +58,10 @@ std::optional<SinusoidalWallMotion<D>> makeWallMotion(const ResolvedCase& c, std
   return m;
 }
 
+// The case's model (seed_wcsph, or wcsph composed from its methods);
+// wallMotion: the paddle's, which dummy walls read (src/model_registry.cpp).
 template <int D>
-Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>> wallMotion = std::nullopt) {
-  if (!composedModel(c)) return makeSeedWcsph<D>(SeedWcsphParameters{c.h, c.k, c.rho0, c.mu, c.g});
-  WcsphSpec<D> spec{makeKernel<D>(c), makeEos(c), makeViscosity(c), c.rho0, {}, c.xsph};
-  const Vec<D> g = gravityVector<D>(c);
-  if (!g.isZero()) spec.bodies.gravity = UniformGravity<D>{g};
-  if (c.starMass > 0) spec.bodies.star = StarAttraction<D>{starLambda(c)};
-  spec.density = densityTreatment(c);
-  spec.diffusion = densityDiffusion(c);
-  spec.boundary = activeBoundary(c);
-  spec.noSlip = noSlipWalls(c);
-  spec.spacing = c.spacing;
-  spec.clampNegative = clampNegativePressure(c);
-  spec.reinit = methodRow(densityReinitMethods(), "density_reinit", c.densityReinit).make(c);
-  spec.reinitEvery = c.densityReinitEvery;
-  spec.cspm = methodRow(gradientCorrectionMethods(), "gradient_correction", c.gradientCorrection).make(c);
-  spec.terms = optionalTermsOf(c);
-  if (const auto curvature = surfaceTensionCurvature(c)) {
-    spec.surfaceTension = c.sigma;
-    spec.curvature = *curvature;
-  }
-  spec.twoPhase = !c.colourBoxMin.empty() || !c.colourEllipseCenter.empty();
-  spec.surfaceThreshold = c.surfaceThreshold;
-  spec.wallMotion = wallMotion;
-  return makeWcsph<D>(spec);
-}
+Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>> wallMotion = std::nullopt);
 
 // The damped reflecting walls of the case's boundary constraint, if it
 // has them (boundaries/reflecting_boundary.hpp), else none.
@@ -102,31 +82,10 @@ Integrator<D> makeIntegrator(const std::string& name) {
 
 // The scene of a validated case (defaults filled in) from its initial state.
 // `startTime`: where the run's clock started (a fixed-dt run is at
-// startTime + n dt after step n); by default the time of the particles.
+// startTime + n dt after step n); by default the time of the particles
+// (src/model_registry.cpp).
 template <int D>
 Scene<D> makeScene(const ResolvedCase& c, InitialState<D> init,
-                   Real startTime = std::numeric_limits<Real>::quiet_NaN()) {
-  const Vec<D> lo = toVec<D>(c.domainMin), hi = toVec<D>(c.domainMax);
-  const PeriodicBox<D> periodic{lo, hi - lo, periodicAxes(c)};
-  const Boundary boundary = activeBoundary(c);
-  const BoundaryHooks<D>& hooks = boundary.hooks<D>();
-  if (std::isnan(startTime)) startTime = init.startTime;
-  StateCheck<D> check(lo, hi);
-  hooks.stateCheck(check, c);
-  const auto motion = makeWallMotion<D>(c, init.particles.fluidCount());
-  if (motion) {
-    // The paddle's velocity at the start (its particles come at rest).
-    for (std::size_t i = init.particles.fluidCount(); i < init.particles.size(); ++i)
-      if (motion->moves(init.particles.id[i])) init.particles.v[i] = motion->velocity(startTime);
-  }
-  Scene<D> scene(std::move(init.particles), makeModel<D>(c, motion), hooks.constraint(c), check, TimeStepControl{c.dt, c.cfl, c.endTime},
-                 startTime, makeIntegrator<D>(c.integrator), c.neighbourSkin);
-  scene.setCellWalk(walkCells(c));
-  if (periodic.any()) scene.setPeriodic(periodic);
-  if (motion) scene.setWallMotion(*motion);
-  if (shiftingOn(c))
-    scene.setShifting(ParticleShifting<D>(makeKernel<D>(c), c.shiftingCoefficient, c.spacing, c.rho0));
-  return scene;
-}
+                   Real startTime = std::numeric_limits<Real>::quiet_NaN());
 
 }  // namespace sph

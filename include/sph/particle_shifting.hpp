@@ -27,20 +27,22 @@
 // truncated support: a free surface within about a support) is not shifted;
 // Lind's projection of the shift onto the surface is not implemented. Use
 // shifting for internal flows (periodic boxes, channels); near a free
-// surface it does nothing.
+// surface it does nothing. apply() is compiled for D = 2 and 3 in
+// src/particle_shifting.cpp (the scene includes this file: the pair loop's
+// walk stays out of its includers).
 #pragma once
 
 #include "sph/mpi/collectives.hpp"
 
 #include "sph/kernels/kernels.hpp"
-#include "sph/neighbour_list.hpp"
-#include "sph/pair_loop.hpp"
 #include "sph/particles.hpp"
 
-#include <cmath>
 #include <vector>
 
 namespace sph {
+
+template <int D>
+class NeighbourList;  // neighbour_list.hpp
 
 template <int D>
 class ParticleShifting {
@@ -50,57 +52,7 @@ class ParticleShifting {
 
   // x_i += dr_i for the fluid particles; `neighbours` built on these
   // positions. dr is formed for every particle before any moves.
-  void apply(Particles<D>& P, const NeighbourList<D>& neighbours, Real dt) const {
-    const std::size_t n = P.fluidCount();
-    shift_.resize(n);
-    std::visit(
-        [&](const auto& W) {
-          {
-            const Real h = W.h();
-            const Real invWdx = 1 / W.W(spacing_);
-            const Real scale = coefficient_ * h * dt;
-            // U over every MPI rank's fluid: reduced between two regions
-            // (a collective call), else in the region's first loop.
-            Real v2max = 0;
-            const bool ranks = comm_.size > 1;
-            if (ranks) {
-#pragma omp parallel for schedule(static) reduction(max : v2max)
-              for (std::size_t i = 0; i < n; ++i) v2max = std::max(v2max, P.v[i].squaredNorm());
-              v2max = mpi::allMax(comm_, v2max);
-            }
-#pragma omp parallel
-            {
-              if (!ranks) {
-#pragma omp for schedule(static) reduction(max : v2max)
-                for (std::size_t i = 0; i < n; ++i) v2max = std::max(v2max, P.v[i].squaredNorm());
-              }
-              const Real speed = std::sqrt(v2max);
-#pragma omp for schedule(static)
-              for (std::size_t i = 0; i < n; ++i) {
-                Vec<D> gradC = Vec<D>::Zero();
-                Real sum = P.m[i] / P.rho[i] * W.W(0);
-                // Fluid neighbours (ghosts of fluid included) with their own
-                // volume, wall ones with the rest volume m / rho0.
-                auto add = [&](std::uint32_t j, const Vec<D>& rij, bool fluid) {
-                  const Real r = rij.norm();
-                  if (r <= 0) return;
-                  const Real Vj = fluid ? P.m[j] / P.rho[j] : P.m[j] / rho0_;
-                  const Real w = W.W(r), q = w * invWdx, q2 = q * q;
-                  sum += Vj * w;
-                  gradC += (Vj * (1 + 0.2 * q2 * q2)) * W.gradW(rij, r);
-                };
-                forEachNeighbourSeparationByKind(
-                    P, neighbours, i, [&](std::uint32_t j, const Vec<D>& rij) { add(j, rij, true); },
-                    [&](std::uint32_t j, const Vec<D>& rij) { add(j, rij, false); });
-                shift_[i] = sum < 0.9 ? Vec<D>::Zero() : Vec<D>(-scale * speed * gradC);
-              }
-#pragma omp for schedule(static)
-              for (std::size_t i = 0; i < n; ++i) P.x[i] += shift_[i];
-            }
-          }
-        },
-        kernel_);
-  }
+  void apply(Particles<D>& P, const NeighbourList<D>& neighbours, Real dt) const;
 
   Real coefficient() const { return coefficient_; }
   // The ranks whose fluid U is the largest speed of (scene.hpp).

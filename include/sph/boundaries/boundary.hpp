@@ -25,17 +25,16 @@
 #include "sph/boundaries/wall_sums.hpp"
 #include "sph/case_config.hpp"
 #include "sph/case_keys.hpp"
+#include "sph/kernels/kernels.hpp"
 #include "sph/models/model.hpp"
 #include "sph/state_check.hpp"
+#include "sph/wall_motion.hpp"
 
 #include <optional>
 #include <variant>
 #include <vector>
 
 namespace sph {
-
-template <int D>
-struct WcsphSpec;
 
 // Which wall particles a boundary makes (wall_particles.cpp builds them).
 enum class WallLattice {
@@ -72,15 +71,21 @@ struct WallConstraint {
   }
 };
 
-// What a model is being built from, for a boundary's passes.
+// What a model is being built from, for a boundary's passes (wcsph:
+// src/wcsph_model.cpp), and the model's pass list and Info it adds to.
 template <int D>
 struct BoundaryBuild {
-  const WcsphSpec<D>& spec;
-  std::vector<Pass<D>>& passes;
+  const Kernel<D>& kernel;
+  const EquationOfState& eos;
+  Real restDensity;
+  bool noSlip;   // dummy/dynamic walls in the viscous term (wall_slip)
+  Real spacing;  // the fluid's spacing dx
+  const std::optional<SinusoidalWallMotion<D>>& wallMotion;  // a paddle
+  Vec<D> g;      // the body acceleration
+  Real c0;       // the reference sound speed
+  Real h;        // the smoothing length
+  PassList<D>& passes;
   typename Model<D>::Info& info;
-  Vec<D> g;  // the body acceleration
-  Real c0;   // the reference sound speed
-  Real h;    // the smoothing length
 };
 
 // A boundary's steps for dimension D (each a no-op by default).

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "sph/boundaries/wall_particle_boundary.hpp"
-#include "sph/models/wcsph.hpp"
+#include "sph/passes/wall_passes.hpp"
 
 namespace sph {
 
@@ -53,9 +53,8 @@ struct DummyBoundary : WallParticleBoundary {
   // Before the forces: p, rho and vWall of the walls from their fluid neighbours.
   template <int D>
   static void beforeForces(BoundaryBuild<D>& b) {
-    const WcsphSpec<D>& s = b.spec;
     b.info.needs |= fieldBit(kFieldVWall);
-    b.passes.push_back(AdamiWallsPass<D>{s.kernel, s.eos, b.g, s.noSlip, s.restDensity, s.wallMotion});
+    b.passes.push_back(makePass(AdamiWallsPass<D>{b.kernel, b.eos, b.g, b.noSlip, b.restDensity, b.wallMotion}));
     b.info.termNames.push_back("dummy_walls_adami2012");
   }
 };

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "sph/boundaries/wall_particle_boundary.hpp"
-#include "sph/models/wcsph.hpp"
+#include "sph/passes/wall_passes.hpp"
 
 namespace sph {
 
@@ -19,7 +19,7 @@ struct RepulsiveBoundary : WallParticleBoundary {
 
   template <int D>
   static void afterForces(BoundaryBuild<D>& b) {
-    b.passes.push_back(RepulsiveWallsPass<D>{RepulsiveForce{b.c0 * b.c0, b.spec.spacing, b.h}});
+    b.passes.push_back(makePass(RepulsiveWallsPass<D>{RepulsiveForce{b.c0 * b.c0, b.spacing, b.h}}));
     b.info.termNames.push_back("repulsive_walls_liu2012");
   }
 };

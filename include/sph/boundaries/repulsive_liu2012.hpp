@@ -13,13 +13,11 @@
 // smoothing length for all particles). The force is an acceleration and
 // pushes straight away from each wall particle. Repulsive wall particles take
 // no part in the SPH sums (density, pressure, viscosity): near a wall the
-// fluid sees a free surface, held only by this force.
+// fluid sees a free surface, held only by this force. Its pass, which
+// applies it: passes/wall_passes.hpp (RepulsiveWallsPass).
 #pragma once
 
-#include "sph/neighbour_list.hpp"
-#include "sph/pair_loop.hpp"
-#include "sph/passes/step_context.hpp"
-#include "sph/terms/term_bits.hpp"
+#include "sph/types.hpp"
 
 namespace sph {
 
@@ -42,34 +40,5 @@ struct RepulsiveForce {
     return 0.01 * c2 * chi * f(r / (0.75 * h)) / (r * r);
   }
 };
-
-template <int D>
-struct RepulsiveWallsPass {
-  RepulsiveForce force;
-
-  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
-  // run() reads x (and adds to a): a += the walls' force.
-  FieldAccess fields(const StepContext&) const { return {fieldBits(kFieldX, kFieldA), fieldBit(kFieldA)}; }
-};
-
-// Defined here, instantiated once (src/instantiate_*.cpp).
-template <int D>
-unsigned RepulsiveWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-  {
-    const std::size_t nFluid = P.fluidCount();
-#pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
-    for (std::size_t i = 0; i < nFluid; ++i) {
-      Vec<D> a = Vec<D>::Zero();
-      forEachNeighbourSeparationByKind(
-          P, neighbours, i, [](std::uint32_t, const Vec<D>&) {},
-          [&](std::uint32_t, const Vec<D>& rij) { a += force.factor(rij.norm()) * rij; });
-      P.a[i] += a;
-    }
-  }
-  return term_bits::kRepulsiveWalls;
-}
-
-extern template struct RepulsiveWallsPass<2>;
-extern template struct RepulsiveWallsPass<3>;
 
 }  // namespace sph

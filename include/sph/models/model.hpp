@@ -5,14 +5,16 @@
 // after every pass sits sync(), which refreshes the periodic ghosts of the
 // fields the pass wrote from their sources (periodic_ghosts.hpp; each pass
 // declares what it reads and writes, its fields(), fields.hpp), the hook
-// where MPI halos will go too. A pass is one of the value types of passes.hpp
-// and reports the term bits it ran, so a test can show that a switched-off
-// term never runs. A second, usually empty, list runs after a step on the
+// where MPI halos will go too. A pass is a Pass<D> (pass.hpp: one of the
+// value types of passes/, wrapped) and reports the term bits it ran, so a
+// test can show that a switched-off term never runs. A second, usually empty, list runs after a step on the
 // finished state (afterStep: the density re-initialisations), a third when
 // the integrator asks for the density rate apart (densityRate: the
 // density-rate pass, density_rate.hpp, with continuity density), and the
-// passes add what the kernel corrections did to the model's counts. The presets that build the lists are in seed_wcsph.hpp
-// and wcsph.hpp.
+// passes add what the kernel corrections did to the model's counts. The
+// presets that build the lists are declared in seed_wcsph.hpp and
+// wcsph.hpp and compiled in src/seed_wcsph_model.cpp and
+// src/wcsph_model.cpp: this file sees no pass type, term or pair loop.
 //
 // Besides its passes a model knows what the rest of the scene asks of it:
 // its support radius and smoothing length, rest density, sound speed (for
@@ -20,8 +22,11 @@
 // energy (energy.csv), and the particle fields it needs.
 #pragma once
 
-#include "sph/models/passes.hpp"
+#include "sph/models/pass.hpp"
+#include "sph/terms/body_forces.hpp"
+#include "sph/terms/equation_of_state.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <utility>
@@ -49,8 +54,7 @@ class Model {
     bool forcesSeeHalfStepVelocity = false;
   };
 
-  Model(Info info, std::vector<Pass<D>> passes, std::vector<Pass<D>> afterStep = {},
-        std::vector<Pass<D>> densityRate = {})
+  Model(Info info, PassList<D> passes, PassList<D> afterStep = {}, PassList<D> densityRate = {})
       : info_(std::move(info)),
         passes_(std::move(passes)),
         afterStep_(std::move(afterStep)),
@@ -86,14 +90,12 @@ class Model {
   // that reads them before the step's first evaluation: after a resume (a
   // snapshot does not hold them) and after a density re-initialisation.
   void refreshCspmMatrices(Particles<D>& P, const NeighbourList<D>& neighbours) const {
-    for (const Pass<D>& pass : passes_)
-      if (const auto* c = std::get_if<CspmCorrectionPass<D>>(&pass)) c->run(P, neighbours, StepContext{});
+    runRole(PassRole::kCspmMatrices, P, neighbours);
   }
 
   // Density alone (the summation-density pass), for the seed's mass scaling.
   void computeDensity(Particles<D>& P, const NeighbourList<D>& neighbours) const {
-    for (const Pass<D>& pass : passes_)
-      if (const auto* d = std::get_if<SummationDensityPass<D>>(&pass)) d->run(P, neighbours, StepContext{});
+    runRole(PassRole::kSummationDensity, P, neighbours);
   }
 
   const std::string& name() const { return info_.name; }
@@ -106,9 +108,9 @@ class Model {
   FieldSet needs() const { return info_.needs; }
   const std::vector<std::string>& termNames() const { return info_.termNames; }
   bool forcesSeeHalfStepVelocity() const { return info_.forcesSeeHalfStepVelocity; }
-  const std::vector<Pass<D>>& passes() const { return passes_; }
-  const std::vector<Pass<D>>& afterStepPasses() const { return afterStep_; }
-  const std::vector<Pass<D>>& densityRatePasses() const { return densityRate_; }
+  const PassList<D>& passes() const { return passes_; }
+  const PassList<D>& afterStepPasses() const { return afterStep_; }
+  const PassList<D>& densityRatePasses() const { return densityRate_; }
   // The term bits the last evaluate() and the afterStep() after it ran (term_bits.hpp).
   unsigned executedTerms() const { return executed_ | executedAfterStep_; }
   // What the kernel corrections did so far (step_context.hpp).
@@ -142,21 +144,27 @@ class Model {
   // before the first pass by the scene). Later, the MPI halos too.
   void sync(Particles<D>& P, FieldSet written) const { P.refreshGhosts(written); }
 
-  unsigned runPasses(const std::vector<Pass<D>>& passes, Particles<D>& P, const NeighbourList<D>& neighbours,
+  unsigned runPasses(const PassList<D>& passes, Particles<D>& P, const NeighbourList<D>& neighbours,
                      StepContext ctx) const {
     ctx.counts = &counts_;
     unsigned ran = 0;
-    for (const Pass<D>& pass : passes) {
-      ran |= std::visit([&](const auto& p) { return p.run(P, neighbours, ctx); }, pass);
-      sync(P, passFields(pass, ctx).writes);
+    for (const auto& pass : passes) {
+      ran |= pass->run(P, neighbours, ctx);
+      sync(P, pass->fields(ctx).writes);
     }
     return ran;
   }
 
+  // The evaluation's passes of one role, run alone outside an evaluation.
+  void runRole(PassRole role, Particles<D>& P, const NeighbourList<D>& neighbours) const {
+    for (const auto& pass : passes_)
+      if (pass->role() == role) pass->run(P, neighbours, StepContext{});
+  }
+
   Info info_;
-  std::vector<Pass<D>> passes_;
-  std::vector<Pass<D>> afterStep_;
-  std::vector<Pass<D>> densityRate_;
+  PassList<D> passes_;
+  PassList<D> afterStep_;
+  PassList<D> densityRate_;
   mutable unsigned executed_ = 0, executedAfterStep_ = 0, densityRateBits_ = 0;
   mutable CorrectionCounts counts_;
 };

@@ -13,12 +13,12 @@
 // document's leap-frog holds no other (docs/methods/seed-model.md).
 //
 // Passes: summation density with the linear EOS, then the seed forces.
-// The terms a case switches off (mu = 0, g = 0) are not built.
+// The terms a case switches off (mu = 0, g = 0) are not built. Declared
+// here, compiled for D = 2 and 3 in src/seed_wcsph_model.cpp (the passes'
+// and terms' headers stay out of this one).
 #pragma once
 
 #include "sph/models/model.hpp"
-
-#include <cmath>
 
 namespace sph {
 
@@ -31,29 +31,6 @@ struct SeedWcsphParameters {
 };
 
 template <int D>
-Model<D> makeSeedWcsph(const SeedWcsphParameters& prm) {
-  const SeedKernels kernels(prm.h);
-  typename Model<D>::Info info;
-  info.name = "seed_wcsph";
-  info.support = info.smoothingLength = prm.h;
-  info.restDensity = prm.rho0;
-  info.eos = LinearEos{prm.k, prm.rho0};
-  info.termNames = {"seed_density", "linear_eos", "seed_pressure"};
-  // The viscous term's v_ij at step t is the half-step v^{t-1/2}: the seed's
-  // leap-frog holds no other velocity (docs/methods/seed-model.md).
-  info.forcesSeeHalfStepVelocity = true;
-  SeedForcePass<D> forces{SeedPressure{kernels}, std::nullopt, {}};
-  if (prm.mu > 0) {
-    forces.viscosity = SeedViscosity{kernels, prm.mu};
-    info.kinematicViscosity = prm.mu / prm.rho0;
-    info.termNames.push_back("seed_viscosity");
-  }
-  if (prm.g != 0) {
-    forces.bodies.gravity = UniformGravity<D>::down(prm.g);
-    info.termNames.push_back("gravity");
-  }
-  info.bodies = forces.bodies;
-  return Model<D>(info, {SummationDensityPass<D>{kernels, info.eos}, forces});
-}
+Model<D> makeSeedWcsph(const SeedWcsphParameters& prm);
 
 }  // namespace sph

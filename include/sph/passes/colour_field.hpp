@@ -15,6 +15,7 @@ namespace sph {
 
 template <int D>
 struct ColourFieldPass {
+  static constexpr const char* name = "colour_field";
   Kernel<D> kernel;
   CurvatureMethod method = CurvatureMethod::kMorris;
   Real minNormal = 0;  // |n| > minNormal: a reliable normal

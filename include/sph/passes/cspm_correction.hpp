@@ -76,6 +76,7 @@ inline std::optional<Mat<D>> cspmCorrection(const Mat<D>& M) {
 
 template <int D>
 struct CspmCorrectionPass {
+  static constexpr const char* name = "cspm_correction";
   Kernel<D> kernel;
   WallSums walls{};  // what the walls add (not repulsive walls)
 

@@ -29,6 +29,7 @@ namespace sph {
 
 template <int D>
 struct DensityRatePass {
+  static constexpr const char* name = "density_rate";
   Kernel<D> kernel;
   DensityDiffusion<D> diffusion;  // coefficient 0: off
   WallSums walls{};               // wall pairs (inSums), the walls' own rates (densityRates)

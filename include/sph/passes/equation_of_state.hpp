@@ -20,6 +20,7 @@ namespace sph {
 
 template <int D>
 struct EquationOfStatePass {
+  static constexpr const char* name = "equation_of_state";
   EquationOfState eos;
   WallSums walls{};            // densityRates: the wall particles carry a density (dynamic walls)
   bool clampNegative = false;  // negative_pressure = clamp

@@ -81,6 +81,7 @@ inline std::optional<Real> mlsDensity(std::size_t i, const Particles<D>& P, cons
 
 template <int D>
 struct MlsDensityPass {
+  static constexpr const char* name = "mls_density";
   Kernel<D> kernel;
   long every = 20;             // steps between two re-initialisations
   WallSums walls{};            // what the walls add (not repulsive walls)

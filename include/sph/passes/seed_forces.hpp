@@ -59,6 +59,7 @@ struct DensityRateEpilogue {
 
 template <int D>
 struct SeedForcePass {
+  static constexpr const char* name = "seed_forces";
   SeedPressure pressure;
   std::optional<SeedViscosity> viscosity;
   BodyForces<D> bodies;

@@ -77,6 +77,7 @@ inline FieldAccess reinitFields(const StepContext& ctx, long every) {
 
 template <int D>
 struct ShepardDensityPass {
+  static constexpr const char* name = "shepard_density";
   Kernel<D> kernel;
   long every = 20;             // steps between two re-initialisations
   WallSums walls{};            // what the walls add (not repulsive walls)

@@ -38,6 +38,7 @@ using DensityKernelChoice =
 
 template <int D>
 struct SummationDensityPass {
+  static constexpr const char* name = "summation_density";
   DensityKernelChoice<D> kernel;
   EquationOfState eos;
   WallSums walls{};            // what the walls add (not repulsive walls)

@@ -7,21 +7,30 @@
 // Dynamic walls (dynamic_crespo2007.hpp) need no pass of their own: the
 // equation of state runs over them and the force pass gives them a density
 // rate.
+// The boundary types that add these passes (dummy_boundary.hpp,
+// repulsive_boundary.hpp) are included wherever the method tables are, so
+// this file declares the passes only: their run() is in src/wall_passes.cpp,
+// with the extrapolation and the pair loop it walks the neighbours with.
 #pragma once
 
-#include "sph/boundaries/dummy_adami2012.hpp"
 #include "sph/boundaries/repulsive_liu2012.hpp"
+#include "sph/fields.hpp"
 #include "sph/kernels/kernels.hpp"
+#include "sph/particles.hpp"
+#include "sph/passes/step_context.hpp"
+#include "sph/terms/equation_of_state.hpp"
 #include "sph/wall_motion.hpp"
 
 #include <optional>
 
-#include <variant>
-
 namespace sph {
 
 template <int D>
+class NeighbourList;  // neighbour_list.hpp
+
+template <int D>
 struct AdamiWallsPass {
+  static constexpr const char* name = "adami_walls";
   Kernel<D> kernel;
   EquationOfState eos;
   Vec<D> bodyAcceleration;  // g (fixed walls: a_w = 0)
@@ -38,21 +47,14 @@ struct AdamiWallsPass {
   }
 };
 
-// Defined here, instantiated once (src/instantiate_*.cpp).
 template <int D>
-unsigned AdamiWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-  const WallAcceleration<D> moving =
-      motion ? WallAcceleration<D>{motion->firstId, motion->endId, motion->acceleration(ctx.time)}
-             : WallAcceleration<D>{};
-  std::visit(
-      [&](const auto& k, const auto& e) {
-        extrapolateToWalls(P, neighbours, k, e, bodyAcceleration, noSlip, rho0, moving);
-      },
-      kernel, eos);
-  return term_bits::kAdamiWalls;
-}
+struct RepulsiveWallsPass {
+  static constexpr const char* name = "repulsive_walls";
+  RepulsiveForce force;
 
-extern template struct AdamiWallsPass<2>;
-extern template struct AdamiWallsPass<3>;
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
+  // run() reads x (and adds to a): a += the walls' force.
+  FieldAccess fields(const StepContext&) const { return {fieldBits(kFieldX, kFieldA), fieldBit(kFieldA)}; }
+};
 
 }  // namespace sph

@@ -13,9 +13,9 @@
 // std::visit into one fully inlined loop; the pair loop forms grad W once
 // per pair for all the terms. The terms that are on or off by a coefficient
 // (continuity, diffusion, XSPH) are switched at run time: off, each is one
-// predictable branch per pair, and the loop is compiled 4 kernels x 4
-// viscosities times (x 2 separations: free space or the minimum image of
-// periodic axes), not 2^3 times more. With the CSPM gradient correction
+// predictable branch per pair, and the loop is compiled 4 kernels x 3
+// viscosities times (no viscosity is the Laplacian one switched off, below),
+// not 2^3 times more. With the CSPM gradient correction
 // (cspm_correction.hpp; its L_i computed by the pass before this one) the
 // pair loop hands the pressure term L_i grad W instead of grad W (the
 // continuity term keeps grad W, so that the density follows the particles'
@@ -29,6 +29,7 @@
 
 #include "sph/boundaries/wall_sums.hpp"
 #include "sph/kernels/kernels.hpp"
+#include "sph/models/wcsph_choices.hpp"
 #include "sph/pair_loop.hpp"
 #include "sph/passes/cspm_correction.hpp"
 #include "sph/passes/seed_forces.hpp"
@@ -49,26 +50,45 @@
 
 namespace sph {
 
-struct NoViscosity {};
-struct LaplacianViscosityChoice {
-  Real mu;
+// A viscosity evaluator that a flag switches off: not evaluated at all,
+// one predictable branch per pair, and its bit not reported.
+template <class E>
+struct SwitchedViscosity : E {
+  bool on = true;
+  bool active() const { return on; }
+  template <int D>
+  [[gnu::always_inline]] void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
+    if (on) E::add(c, P, r);
+  }
 };
-struct MonaghanViscosityChoice {
-  Real alpha, beta;
-};
-struct MorrisViscosityChoice {
-  Real nu;
-};
-using ViscosityChoice =
-    std::variant<NoViscosity, LaplacianViscosityChoice, MonaghanViscosityChoice, MorrisViscosityChoice>;
 
-// The pair evaluator of a viscosity choice for kernel K (none: an empty
-// pack); kWall: for wall neighbours (their vWall), `on` = false: coefficient 0.
+// The viscosity as the force loop is compiled for: no viscosity is the
+// Laplacian one switched off, so that it shares that loop instead of being
+// one of its own (4 kernels x 3 viscosities force loops, not x 4), with the
+// same results, bit for bit, for a branch per pair.
+struct SwitchedLaplacianChoice {
+  LaplacianViscosityChoice laplacian;
+  bool on;
+};
+using LoopViscosity = std::variant<SwitchedLaplacianChoice, MonaghanViscosityChoice, MorrisViscosityChoice>;
+inline LoopViscosity loopViscosity(const ViscosityChoice& choice) {
+  return std::visit(
+      [](const auto& v) -> LoopViscosity {
+        using V = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<V, NoViscosity>) return SwitchedLaplacianChoice{{0}, false};
+        else if constexpr (std::is_same_v<V, LaplacianViscosityChoice>) return SwitchedLaplacianChoice{v, true};
+        else return v;
+      },
+      choice);
+}
+
+// The pair evaluator of a viscosity for kernel K; kWall: for wall
+// neighbours (their vWall), `on` = false: coefficient 0.
 template <class K, bool kWall>
-inline std::tuple<> viscosityPack(const K&, NoViscosity, bool = true) { return {}; }
+using SwitchedLaplacian = SwitchedViscosity<LaplacianViscosity<K, kWall>>;
 template <class K, bool kWall>
-inline std::tuple<LaplacianViscosity<K, kWall>> viscosityPack(const K& k, LaplacianViscosityChoice v, bool on = true) {
-  return {LaplacianViscosity<K, kWall>{k, on ? v.mu : 0}};
+inline std::tuple<SwitchedLaplacian<K, kWall>> viscosityPack(const K& k, SwitchedLaplacianChoice v, bool on = true) {
+  return {SwitchedLaplacian<K, kWall>{{k, on ? v.laplacian.mu : 0}, v.on}};
 }
 template <class K, bool kWall>
 inline std::tuple<MonaghanViscosity<K, kWall>> viscosityPack(const K& k, MonaghanViscosityChoice v, bool on = true) {
@@ -81,6 +101,7 @@ inline std::tuple<MorrisViscosity<K, kWall>> viscosityPack(const K& k, MorrisVis
 
 template <int D>
 struct WcsphForcePass {
+  static constexpr const char* name = "wcsph_forces";
   Kernel<D> kernel;
   ViscosityChoice viscosity;
   BodyForces<D> bodies;
@@ -153,7 +174,7 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
                            DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, wallRatesHere}, correct,
                            prologue);
       },
-      kernel, viscosity);
+      kernel, loopViscosity(viscosity));
   const unsigned wallBits = walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
   return bits | wallBits | bodies.bits() | particleTermBits(terms) |
          (surfaceTension ? term_bits::kSurfaceTension : 0u);

@@ -53,6 +53,7 @@
 #pragma once
 
 #include "sph/kernels/kernels.hpp"
+#include "sph/models/wcsph_choices.hpp"
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
 #include "sph/terms/corrected_surface_tension.hpp"
@@ -95,7 +96,7 @@ struct ColourKernel<Muller<D>> {
 
 // kCorrected: terms/corrected_surface_tension.hpp (the kernel-gradient-
 // corrected normal and divergence, the force over the whole band).
-enum class CurvatureMethod { kMuller, kMorris, kCorrected };
+// (CurvatureMethod: models/wcsph_choices.hpp.)
 
 // n_i and kappa_i for every fluid particle i (fluid neighbours only).
 // twoPhase (a colour region was given): the difference forms

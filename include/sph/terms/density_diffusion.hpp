@@ -19,16 +19,10 @@
 // DensityDiffusionChoice; build() derives the term's constants from it.
 #pragma once
 
+#include "sph/models/wcsph_choices.hpp"
 #include "sph/pair_loop.hpp"
 
 namespace sph {
-
-// The chosen form and its delta, before the kernel and the EOS are known.
-struct DensityDiffusionChoice {
-  Real delta = 0;           // delta-SPH coefficient (0: off)
-  bool hydrostatic = true;  // fourtakas (true) or molteni (false)
-  const char* term = "density_diffusion_fourtakas";  // the term's name in run.json
-};
 
 template <int D>
 struct DensityDiffusion {
