@@ -37,6 +37,7 @@ Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>>
   spec.twoPhase = !c.colourBoxMin.empty() || !c.colourEllipseCenter.empty();
   spec.surfaceThreshold = c.surfaceThreshold;
   spec.wallMotion = wallMotion;
+  spec.shifting = shiftingOn(c);
   return makeWcsph<D>(spec);
 }
 

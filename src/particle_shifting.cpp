@@ -11,7 +11,7 @@
 namespace sph {
 
 template <int D>
-void ParticleShifting<D>::apply(Particles<D>& P, const NeighbourList<D>& neighbours, Real dt) const {
+void ParticleShifting<D>::apply(Particles<D>& P, const NeighbourList<D>& neighbours, Real dt, bool sumsGiven) const {
   const std::size_t n = P.fluidCount();
   shift_.resize(n);
   std::visit(
@@ -39,20 +39,28 @@ void ParticleShifting<D>::apply(Particles<D>& P, const NeighbourList<D>& neighbo
 #pragma omp for schedule(static)
             for (std::size_t i = 0; i < n; ++i) {
               Vec<D> gradC = Vec<D>::Zero();
-              Real sum = P.m[i] / P.rho[i] * W.W(0);
-              // Fluid neighbours (ghosts of fluid included) with their own
-              // volume, wall ones with the rest volume m / rho0.
-              auto add = [&](std::uint32_t j, const Vec<D>& rij, bool fluid) {
-                const Real r = rij.norm();
-                if (r <= 0) return;
-                const Real Vj = fluid ? P.m[j] / P.rho[j] : P.m[j] / rho0_;
-                const Real w = W.W(r), q = w * invWdx, q2 = q * q;
-                sum += Vj * w;
-                gradC += (Vj * (1 + 0.2 * q2 * q2)) * W.gradW(rij, r);
-              };
-              forEachNeighbourSeparationByKind(
-                  P, neighbours, i, [&](std::uint32_t j, const Vec<D>& rij) { add(j, rij, true); },
-                  [&](std::uint32_t j, const Vec<D>& rij) { add(j, rij, false); });
+              Real sum = 0;
+              if (sumsGiven) {
+                sum = P.shiftSum[i];
+                gradC = P.shiftGrad[i];
+              } else {
+                // Fluid neighbours (ghosts of fluid included) with their own
+                // volume, wall ones with the rest volume m / rho0; the
+                // particle's own term last, as the force pass's sums
+                // (terms/shifting_sums.hpp) have it.
+                auto add = [&](std::uint32_t j, const Vec<D>& rij, bool fluid) {
+                  const Real r = rij.norm();
+                  if (r <= 0) return;
+                  const Real Vj = fluid ? P.m[j] / P.rho[j] : P.m[j] / rho0_;
+                  const Real w = W.W(r), q = w * invWdx, q2 = q * q;
+                  sum += Vj * w;
+                  gradC += (Vj * (1 + 0.2 * q2 * q2)) * W.gradW(rij, r);
+                };
+                forEachNeighbourSeparationByKind(
+                    P, neighbours, i, [&](std::uint32_t j, const Vec<D>& rij) { add(j, rij, true); },
+                    [&](std::uint32_t j, const Vec<D>& rij) { add(j, rij, false); });
+                sum += P.m[i] / P.rho[i] * W.W(0);
+              }
               shift_[i] = sum < 0.9 ? Vec<D>::Zero() : Vec<D>(-scale * speed * gradC);
             }
 #pragma omp for schedule(static)

@@ -64,6 +64,14 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   }
   forces.wallViscosity = s.noSlip;
   forces.cspm = s.cspm;
+  // Particle shifting's sums in the force loop (terms/shifting_sums.hpp),
+  // unless the walls stay out of the pairs (repulsive walls: the shift's
+  // own walk takes them).
+  if (s.shifting && walls.inSums) {
+    forces.shifting = {true, s.spacing, s.restDensity};
+    info.needs |= fieldBits(kFieldShiftSum, kFieldShiftGrad);
+    info.shiftSums = true;
+  }
 
   if (s.surfaceTension > 0) {
     // The corrected method spreads kappa over the band's tails: its force acts wherever n != 0.

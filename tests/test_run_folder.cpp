@@ -580,6 +580,18 @@ BOOST_AUTO_TEST_CASE(resume_is_bit_identical) {
                       "0.004"});
   variants.push_back({"rk4_skin", wcsph, {"--integrator", "rk4", "--output_every", "10", "--neighbour_skin", "0.002"},
                       "0.0017", "0.004"});
+  // Particle shifting: the shift after a resume takes its sums from a walk
+  // of its own, the run never stopped from the force pass
+  // (terms/shifting_sums.hpp); with walls, with a Shepard re-initialisation
+  // on the snapshot step (after which the shift walks too), periodic.
+  variants.push_back({"shifting_walls", test::caseFile("dam_break_mm"),
+                      {"--output_every", "20", "--shifting", "fickian"}, "0.0023", "0.004"});
+  variants.push_back({"shifting_shepard", test::caseFile("dam_break_mm"),
+                      {"--output_every", "20", "--shifting", "fickian", "--density_reinit", "shepard",
+                       "--density_reinit_every", "20"},
+                      "0.0023", "0.004"});
+  variants.push_back({"shifting_periodic", test::caseFile("taylor_green_2d"), {"--output_every", "10"}, "0.01",
+                      "0.02"});
   variants.push_back({"periodic_skin", test::caseFile("poiseuille_2d"),
                       {"--output_every", "20", "--neighbour_skin", "0.01", "--gravity", "1e-2", "0"}, "0.0235", "0.04"});
   for (const char* integrator : {"leap_frog", "rk4"})

@@ -100,6 +100,42 @@ BOOST_AUTO_TEST_CASE(a_perfect_lattice_is_not_shifted) {
   BOOST_TEST(std::abs(move[0] - 0.05) < 1e-9);  // 50 steps of 1e-3 s at 1 m/s
 }
 
+// The force pass leaves the shift's sums in the particles
+// (terms/shifting_sums.hpp): on a jittered periodic lattice they are the
+// brute-force sums over every pair (minimum image), sum_j V_j W_ij with
+// the particle's own term and grad C_i = sum_j V_j (1 + 0.2 (W_ij /
+// W(dx))^4) grad_i W_ij, to 1e-12 of their scale (other summation orders).
+BOOST_AUTO_TEST_CASE(the_force_pass_takes_the_shift_sums) {
+  const CaseConfig c = periodicLattice();
+  const Scene<2> s = jitteredScene(c, 0.15, 11);
+  const auto& P = s.particles();
+  BOOST_TEST_REQUIRE(P.shiftSum.size() >= P.fluidCount());
+  const WendlandC2<2> W(c.h);
+  const PeriodicBox<2> box = s.periodicBox();
+  const Real invWdx = 1 / W.W(c.spacing);
+  Real worstSum = 0, worstGrad = 0, gradScale = 0;
+  for (std::size_t i = 0; i < P.fluidCount(); ++i) {
+    Real sum = P.m[i] / P.rho[i] * W.W(0);
+    Vec<2> grad = Vec<2>::Zero();
+    for (std::size_t j = 0; j < P.fluidCount(); ++j) {
+      const Vec<2> rij = box.minimumImage(Vec<2>(P.x[i] - P.x[j]));
+      const Real r = rij.norm();
+      if (j == i || r >= 2 * c.h) continue;
+      const Real Vj = P.m[j] / P.rho[j], q = W.W(r) * invWdx;
+      sum += Vj * W.W(r);
+      grad += Vj * (1 + 0.2 * q * q * q * q) * (W.dWdr(r) / r) * rij;
+    }
+    worstSum = std::max(worstSum, std::abs(P.shiftSum[i] - sum));
+    worstGrad = std::max(worstGrad, (P.shiftGrad[i] - grad).norm());
+    gradScale = std::max(gradScale, grad.norm());
+  }
+  BOOST_TEST_MESSAGE("shift sums against brute force: " << worstSum << " (sum), " << worstGrad << " of "
+                                                        << gradScale << " (grad C)");
+  BOOST_TEST(gradScale > 1);  // the jitter gives a gradient to check
+  BOOST_TEST(worstSum < 1e-12);
+  BOOST_TEST(worstGrad < 1e-12 * gradScale);
+}
+
 // A lattice jittered by 0.15 dx: the shift evens it out (the spread of
 // the kernel sums falls), where the same run without shifting does not.
 BOOST_AUTO_TEST_CASE(a_disordered_lattice_becomes_more_even) {

@@ -55,6 +55,8 @@ enum FieldId : unsigned {
   kFieldVPrev,     // two-step leap-frog: the filtered velocity of the step before
   kFieldRhoPrev,   // ... and density
   kFieldXList,     // position at the neighbour list's last build (skin > 0, or the cell walk) [m]
+  kFieldShiftSum,  // particle shifting: the kernel sum sum_j V_j W_ij at the last evaluation
+  kFieldShiftGrad, // ... and the concentration gradient grad C_i (particle_shifting.hpp) [1/m]
   kFieldCount
 };
 
@@ -124,6 +126,8 @@ inline constexpr FieldInfo kFieldTable[kFieldCount] = {
     {kFieldVPrev, "vPrev", FieldRole::kState, "velocity_previous", "m/s", "m/s"},
     {kFieldRhoPrev, "rhoPrev", FieldRole::kState, "density_previous", "kg/m^3", "kg/m^2"},
     {kFieldXList, "xList", FieldRole::kList, "list_build_position", "m", "m"},
+    {kFieldShiftSum, "shiftSum", FieldRole::kDerived, nullptr, "1", "1"},
+    {kFieldShiftGrad, "shiftGrad", FieldRole::kDerived, nullptr, "1/m", "1/m"},
 };
 
 constexpr bool isPermuted(FieldRole r) { return r == FieldRole::kState || r == FieldRole::kStage; }

@@ -52,7 +52,7 @@ namespace sph {
 
 // Which members of PairRates an evaluator adds to.
 namespace rates {
-enum : unsigned { kAcceleration = 1, kForceDensity = 2, kDensityRate = 4, kXsph = 8 };
+enum : unsigned { kAcceleration = 1, kForceDensity = 2, kDensityRate = 4, kXsph = 8, kShifting = 16 };
 }
 
 // One interacting pair seen from particle i. Convention: rij = x_i - x_j.
@@ -92,6 +92,8 @@ struct PairRates {
   Vec<D> F = Vec<D>::Zero();     // force per volume, divided by rho_i in the epilogue
   Real drho = 0;                 // d rho_i / dt
   Vec<D> xsph = Vec<D>::Zero();  // XSPH velocity correction, before its epsilon
+  Real shiftSum = 0;                  // particle shifting's kernel sum (terms/shifting_sums.hpp)
+  Vec<D> shiftGrad = Vec<D>::Zero();  // ... and concentration gradient
 };
 
 // The pair loop of a model with no kernel of this form (the seed scheme: its

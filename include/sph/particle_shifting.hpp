@@ -51,8 +51,11 @@ class ParticleShifting {
       : kernel_(kernel), coefficient_(coefficient), spacing_(spacing), rho0_(restDensity) {}
 
   // x_i += dr_i for the fluid particles; `neighbours` built on these
-  // positions. dr is formed for every particle before any moves.
-  void apply(Particles<D>& P, const NeighbourList<D>& neighbours, Real dt) const;
+  // positions. dr is formed for every particle before any moves. sumsGiven:
+  // the particles hold the sums of grad C at this state (shiftSum,
+  // shiftGrad, left by the force pass: terms/shifting_sums.hpp), so the
+  // neighbours are not walked again; else the shift takes them itself.
+  void apply(Particles<D>& P, const NeighbourList<D>& neighbours, Real dt, bool sumsGiven = false) const;
 
   Real coefficient() const { return coefficient_; }
   // The ranks whose fluid U is the largest speed of (scene.hpp).

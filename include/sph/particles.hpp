@@ -67,6 +67,8 @@ struct FieldArrays {
   std::vector<Vec<D>> vPrev;
   std::vector<Real> rhoPrev;
   std::vector<Vec<D>> xList;
+  std::vector<Real> shiftSum;
+  std::vector<Vec<D>> shiftGrad;
 
   // f(info, field of s0, field of s1, ...) for every row of the table, in
   // table order: the one place that lists the members.
@@ -99,6 +101,8 @@ struct FieldArrays {
     f(kFieldTable[kFieldVPrev], s.vPrev...);
     f(kFieldTable[kFieldRhoPrev], s.rhoPrev...);
     f(kFieldTable[kFieldXList], s.xList...);
+    f(kFieldTable[kFieldShiftSum], s.shiftSum...);
+    f(kFieldTable[kFieldShiftGrad], s.shiftGrad...);
   }
 
   // Call f(info, array) for every field.

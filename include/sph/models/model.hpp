@@ -52,6 +52,9 @@ class Model {
     // v^{n+1/2} itself, the only velocity the seed document's leap-frog
     // holds (seed_wcsph; docs/methods/seed-model.md).
     bool forcesSeeHalfStepVelocity = false;
+    // Its evaluation leaves particle shifting's sums in the particles
+    // (shiftSum, shiftGrad: terms/shifting_sums.hpp), for the next step's shift.
+    bool shiftSums = false;
   };
 
   Model(Info info, PassList<D> passes, PassList<D> afterStep = {}, PassList<D> densityRate = {})
@@ -108,11 +111,14 @@ class Model {
   FieldSet needs() const { return info_.needs; }
   const std::vector<std::string>& termNames() const { return info_.termNames; }
   bool forcesSeeHalfStepVelocity() const { return info_.forcesSeeHalfStepVelocity; }
+  bool shiftSums() const { return info_.shiftSums; }
   const PassList<D>& passes() const { return passes_; }
   const PassList<D>& afterStepPasses() const { return afterStep_; }
   const PassList<D>& densityRatePasses() const { return densityRate_; }
   // The term bits the last evaluate() and the afterStep() after it ran (term_bits.hpp).
   unsigned executedTerms() const { return executed_ | executedAfterStep_; }
+  // Whether the last afterStep() changed the state (a re-initialisation ran).
+  bool changedAfterStep() const { return executedAfterStep_ != 0; }
   // What the kernel corrections did so far (step_context.hpp).
   const CorrectionCounts& correctionCounts() const { return counts_; }
 

@@ -59,6 +59,7 @@ struct WcsphSpec {
   Real surfaceThreshold = 0.1; // |n| > threshold / h
   std::optional<SinusoidalWallMotion<D>> wallMotion = std::nullopt;  // a paddle (dummy walls read its a_w)
   OptionalTerms terms{};       // terms/optional_terms.hpp (each off by default)
+  bool shifting = false;       // the scene shifts the particles: the force pass takes the shift's sums
 };
 
 template <int D>

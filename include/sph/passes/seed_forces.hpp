@@ -35,6 +35,8 @@ struct ForceEpilogue {
   bool densityRate = false;  // continuity density: write d rho/dt
   const ColourSurfaceTension<D>* surfaceTension = nullptr;  // none: one branch per particle
   Extra extra{};
+  bool shiftSums = false;  // particle shifting's sums (terms/shifting_sums.hpp), with the particle's own V_i W(0)
+  Real selfW = 0;          // W(0)
 
   void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const {
     Vec<D> a = r.a;
@@ -47,6 +49,11 @@ struct ForceEpilogue {
       if (densityRate) P.drho[i] = r.drho;
     if constexpr ((Writes & rates::kXsph) != 0)
       if (xsphEpsilon > 0) P.vXsph[i] = xsphEpsilon * r.xsph;
+    if constexpr ((Writes & rates::kShifting) != 0)
+      if (shiftSums) {
+        P.shiftSum[i] = r.shiftSum + P.m[i] / P.rho[i] * selfW;
+        P.shiftGrad[i] = r.shiftGrad;
+      }
   }
 };
 

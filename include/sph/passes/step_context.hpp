@@ -25,6 +25,9 @@ struct StepContext {
   // leap-frog and symplectic Euler with continuity density): the force
   // pass leaves d rho/dt alone.
   bool densityRateApart = false;
+  // The last evaluation left particle shifting's sums at the current state
+  // in the particles (shiftSum, shiftGrad; terms/shifting_sums.hpp).
+  bool shiftSumsGiven = false;
   CorrectionCounts* counts = nullptr;  // where passes add their counts (the model's; none: not counted)
 };
 

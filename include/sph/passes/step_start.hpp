@@ -23,13 +23,15 @@ struct ShiftingPass {
   ParticleShifting<D> shifting;
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-    shifting.apply(P, neighbours, ctx.dt);
+    shifting.apply(P, neighbours, ctx.dt, ctx.shiftSumsGiven);
     return 0;
   }
   // run() reads x, m and rho of the particle and its neighbours and the
-  // fluid's v (the largest speed); writes the fluid's x.
-  FieldAccess fields(const StepContext&) const {
-    return {fieldBits(kFieldX, kFieldM, kFieldRho, kFieldV), fieldBit(kFieldX)};
+  // fluid's v (the largest speed), or, when the last evaluation left them,
+  // the sums of grad C; writes the fluid's x.
+  FieldAccess fields(const StepContext& ctx) const {
+    const FieldSet sums = ctx.shiftSumsGiven ? fieldBits(kFieldShiftSum, kFieldShiftGrad) : 0u;
+    return {fieldBits(kFieldX, kFieldM, kFieldRho, kFieldV) | sums, fieldBit(kFieldX)};
   }
 };
 

@@ -41,6 +41,7 @@
 #include "sph/terms/monaghan_viscosity.hpp"
 #include "sph/terms/morris_viscosity.hpp"
 #include "sph/terms/optional_terms.hpp"
+#include "sph/terms/shifting_sums.hpp"
 #include "sph/terms/symmetric_pressure.hpp"
 #include "sph/terms/xsph.hpp"
 
@@ -113,6 +114,12 @@ struct WcsphForcePass {
   bool cspm = false;                  // CSPM-corrected pressure gradient (needs cspmL)
   std::optional<ColourSurfaceTension<D>> surfaceTension;  // from the colour pre-pass
   OptionalTerms terms{};              // terms/optional_terms.hpp (each off by default)
+  // Particle shifting's sums for the next step's shift (terms/shifting_sums.hpp;
+  // off: not taken). spacing: dx of W(dx); rho0: the walls' volume m / rho0.
+  struct ShiftingSumsChoice {
+    bool on = false;
+    Real spacing = 0, rho0 = 0;
+  } shifting{};
   mutable PairScratch scratch{};      // p/rho^2 and m/rho of every particle (pair_loop.hpp), per run
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
@@ -121,7 +128,7 @@ struct WcsphForcePass {
   // XSPH; cspmL with CSPM, the colour normal and curvature with surface
   // tension, what the body forces read. It writes the fluid's a, d rho/dt
   // (the walls' too when they have one) unless the integrator computes it
-  // apart, and the XSPH correction.
+  // apart, the XSPH correction, and particle shifting's sums when asked.
   FieldAccess fields(const StepContext& ctx) const {
     const bool rateHere = continuity && !ctx.densityRateApart;
     const FieldSet viscous = std::visit(
@@ -138,7 +145,8 @@ struct WcsphForcePass {
     if (surfaceTension) reads |= ColourSurfaceTension<D>::kReads;
     reads |= optionalTermReads(terms);
     const FieldSet writes = fieldBit(kFieldA) | (rateHere ? fieldBit(kFieldDrho) : 0u) |
-                            (xsphEpsilon > 0 ? fieldBit(kFieldVXsph) : 0u);
+                            (xsphEpsilon > 0 ? fieldBit(kFieldVXsph) : 0u) |
+                            (shifting.on ? fieldBits(kFieldShiftSum, kFieldShiftGrad) : 0u);
     return {reads, writes};
   }
 };
@@ -159,18 +167,20 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         const SymmetricPressure pressure{cspm, prologue.pOverRho2};
         const GradientCorrection<D> correct{cspm ? P.cspmL.data() : nullptr};
         const ContinuityDensity rate{rateHere};
-        const auto fluidPairs = std::tuple_cat(std::make_tuple(rate, diffusionHere, pressure),
-                                               pairTermEvaluators(terms, k, rateHere),
-                                               viscosityPack<K, false>(k, visc),
-                                               std::make_tuple(Xsph<K>{k, xsphEpsilon}));
-        const auto wallNeighbourPairs = std::tuple_cat(std::make_tuple(rate, pressure),
-                                                       viscosityPack<K, true>(k, visc, wallViscosity));
+        const Real invWdx = shifting.on ? 1 / k.W(shifting.spacing) : 0;
+        const auto fluidPairs = std::tuple_cat(
+            std::make_tuple(rate, diffusionHere, pressure), pairTermEvaluators(terms, k, rateHere),
+            viscosityPack<K, false>(k, visc),
+            std::make_tuple(Xsph<K>{k, xsphEpsilon}, ShiftingSums<K>{k, invWdx, shifting.rho0, shifting.on}));
+        const auto wallNeighbourPairs =
+            std::tuple_cat(std::make_tuple(rate, pressure), viscosityPack<K, true>(k, visc, wallViscosity),
+                           std::make_tuple(ShiftingSums<K, true>{k, invWdx, shifting.rho0, shifting.on}));
         constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
         return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
                            std::make_tuple(ContinuityDensity{wallRatesHere}),
                            ForceEpilogue<D, writes, ParticleTermForces<D>>{
                                bodies, xsphEpsilon, rateHere, surfaceTension ? &*surfaceTension : nullptr,
-                               ParticleTermForces<D>{terms}},
+                               ParticleTermForces<D>{terms}, shifting.on, k.W(0)},
                            DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, wallRatesHere}, correct,
                            prologue);
       },
