@@ -13,10 +13,10 @@
 // Users: the Adami wall extrapolation (boundaries/dummy_adami2012.hpp),
 // the repulsive walls (src/wall_passes.cpp), the CSPM moments
 // (passes/cspm_correction.hpp), the Shepard and MLS re-initialisations
-// (passes/shepard_density.hpp, mls_density.hpp) and the regime check
-// (regime_check.hpp). Not yet: the summation density and the colour field,
-// whose walks live in terms/ (summation_density.hpp,
-// colour_surface_tension.hpp), and the particle shifting
+// (passes/shepard_density.hpp, mls_density.hpp), the summation density
+// (terms/summation_density.hpp) and the regime check (regime_check.hpp).
+// Not yet: the colour field (terms/colour_surface_tension.hpp: three loops
+// in one parallel region) and the particle shifting
 // (src/particle_shifting.cpp).
 //
 // (Not the case key neighbour_walk, which chooses how the list yields a
