@@ -3,11 +3,8 @@
 #include "sph/passes/wall_passes.hpp"
 
 #include "sph/boundaries/dummy_adami2012.hpp"
-#include "sph/neighbour_list.hpp"
-#include "sph/pair_loop.hpp"
+#include "sph/neighbour_walk.hpp"
 #include "sph/terms/term_bits.hpp"
-
-#include <variant>
 
 namespace sph {
 
@@ -16,11 +13,7 @@ unsigned AdamiWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   const WallAcceleration<D> moving =
       motion ? WallAcceleration<D>{motion->firstId, motion->endId, motion->acceleration(ctx.time)}
              : WallAcceleration<D>{};
-  std::visit(
-      [&](const auto& k, const auto& e) {
-        extrapolateToWalls(P, neighbours, k, e, bodyAcceleration, noSlip, rho0, moving);
-      },
-      kernel, eos);
+  extrapolateToWalls(P, neighbours, kernel, eos, bodyAcceleration, noSlip, rho0, moving);
   return term_bits::kAdamiWalls;
 }
 
@@ -28,17 +21,11 @@ unsigned AdamiWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
 // (repulsive_liu2012.hpp).
 template <int D>
 unsigned RepulsiveWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-  {
-    const std::size_t nFluid = P.fluidCount();
-#pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize)
-    for (std::size_t i = 0; i < nFluid; ++i) {
-      Vec<D> a = Vec<D>::Zero();
-      forEachNeighbourSeparationByKind(
-          P, neighbours, i, [](std::uint32_t, const Vec<D>&) {},
-          [&](std::uint32_t, const Vec<D>& rij) { a += force.factor(rij.norm()) * rij; });
-      P.a[i] += a;
-    }
-  }
+  walkNeighbours(P, neighbours, WalkOver::kFluid, [&](std::size_t i, const NeighbourRow<D>& row) {
+    Vec<D> a = Vec<D>::Zero();
+    row.forEachWall([&](std::uint32_t, const Vec<D>& rij) { a += force.factor(rij.norm()) * rij; });
+    P.a[i] += a;
+  });
   return term_bits::kRepulsiveWalls;
 }
 

@@ -29,7 +29,7 @@
 
 #include "sph/mpi/collectives.hpp"
 
-#include "sph/neighbour_list.hpp"
+#include "sph/neighbour_walk.hpp"
 #include "sph/particles.hpp"
 
 #include <algorithm>
@@ -60,25 +60,33 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
   const Real support2 = support * support;
   const std::size_t nFluid = P.fluidCount();
   const Real close2 = dx > 0 ? 0.04 * dx * dx : 0;
-  Real v2 = 0, rhoMax = 0;
-  std::size_t isolated = 0, paired = 0, pairs = 0;
-#pragma omp parallel for schedule(static) if (nFluid >= kMinParallelSize) \
-    reduction(max : v2, rhoMax) reduction(+ : isolated, paired, pairs)
-  for (std::size_t i = 0; i < nFluid; ++i) {
-    v2 = std::max(v2, P.v[i].squaredNorm());
-    rhoMax = std::max(rhoMax, P.rho[i]);
-    std::size_t count = 0;
-    bool close = false;
-    const Vec<D> xi = P.x[i];
-    neighbours.forEach(i, [&](std::uint32_t j) {
-      const Real r2 = Vec<D>(xi - P.x[j]).squaredNorm();
-      count += r2 < support2;
-      close |= r2 < close2;
-    });
-    pairs += count;
-    isolated += count == 0;
-    paired += close;
-  }
+  // This thread's maxima and counts; merged: the largest, the sums.
+  struct Tally {
+    Real v2 = 0, rhoMax = 0;
+    std::size_t isolated = 0, paired = 0, pairs = 0;
+    void operator+=(const Tally& o) {
+      v2 = std::max(v2, o.v2);
+      rhoMax = std::max(rhoMax, o.rhoMax);
+      isolated += o.isolated, paired += o.paired, pairs += o.pairs;
+    }
+  };
+  const Tally t = walkNeighbours<Tally>(
+      P, neighbours, WalkOver::kFluid, [&](std::size_t i, const NeighbourRow<D>& row, Tally& mine) {
+        mine.v2 = std::max(mine.v2, P.v[i].squaredNorm());
+        mine.rhoMax = std::max(mine.rhoMax, P.rho[i]);
+        std::size_t count = 0;
+        bool close = false;
+        row.forEach([&](std::uint32_t, const Vec<D>& rij) {
+          const Real r2 = rij.squaredNorm();
+          count += r2 < support2;
+          close |= r2 < close2;
+        });
+        mine.pairs += count;
+        mine.isolated += count == 0;
+        mine.paired += close;
+      });
+  Real v2 = t.v2, rhoMax = t.rhoMax;
+  std::size_t isolated = t.isolated, paired = t.paired, pairs = t.pairs;
   // Over every rank's fluid (no MPI call on one rank).
   double highest[2] = {v2, rhoMax};
   mpi::allMax(comm, highest, 2);

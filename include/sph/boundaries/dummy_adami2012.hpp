@@ -17,15 +17,14 @@
 // for the same reason.
 #pragma once
 
-#include "sph/neighbour_list.hpp"
-#include "sph/pair_loop.hpp"
+#include "sph/neighbour_walk.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/term_bits.hpp"
 
 #include <algorithm>
 #include <cstdint>
-#include <variant>
+#include <tuple>
 
 namespace sph {
 
@@ -37,40 +36,40 @@ struct WallAcceleration {
   Vec<D> a = Vec<D>::Zero();
 };
 
+// Kernel and Eos: a kernel and an EOS, or the variants of them (resolved
+// once, by the walk).
 template <int D, class Kernel, class Eos>
 void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, const Eos& eos,
                         const Vec<D>& bodyAcceleration, bool noSlip, Real rho0,
                         const WallAcceleration<D>& moving = {}) {
   const Vec<D> movingBody = bodyAcceleration - moving.a;
-  {
-    const std::size_t n = P.size(), nFluid = P.fluidCount();
-    const bool withSoundSpeed = !P.c.empty();
-#pragma omp parallel for schedule(static) if (n - nFluid >= kMinParallelSize)
-    for (std::size_t w = nFluid; w < n; ++w) {
-      Real sumW = 0, sumPW = 0;
-      Vec<D> sumRhoRW = Vec<D>::Zero(), sumVW = Vec<D>::Zero();
-      forEachNeighbourSeparation(P, neighbours, w, [&](std::uint32_t f, const Vec<D>& rwf) {
-        const Real W = kernel.W(rwf.norm());
-        sumW += W;
-        sumPW += P.p[f] * W;
-        sumRhoRW += (P.rho[f] * W) * rwf;
-        sumVW += W * P.v[f];
-      });
-      const Vec<D> uw = P.v[w];
-      if (sumW > 0) {
-        const bool accelerated = P.id[w] >= moving.firstId && P.id[w] < moving.endId;
-        P.p[w] = std::max(Real(0), (sumPW + (accelerated ? movingBody : bodyAcceleration).dot(sumRhoRW)) / sumW);
-        P.rho[w] = eos.density(P.p[w]);
-        const Vec<D> vFluid = sumVW / sumW;
-        P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;
-      } else {
-        P.p[w] = 0;
-        P.rho[w] = rho0;
-        P.vWall[w] = uw;
-      }
-      if (withSoundSpeed) P.c[w] = eos.soundSpeed(P.rho[w]);
-    }
-  }
+  const bool withSoundSpeed = !P.c.empty();
+  walkNeighbours(P, neighbours, WalkOver::kWalls, std::tie(kernel, eos),
+                 [&](std::size_t w, const NeighbourRow<D>& row, const auto& k, const auto& e) {
+                   Real sumW = 0, sumPW = 0;
+                   Vec<D> sumRhoRW = Vec<D>::Zero(), sumVW = Vec<D>::Zero();
+                   row.forEach([&](std::uint32_t f, const Vec<D>& rwf) {
+                     const Real W = k.W(rwf.norm());
+                     sumW += W;
+                     sumPW += P.p[f] * W;
+                     sumRhoRW += (P.rho[f] * W) * rwf;
+                     sumVW += W * P.v[f];
+                   });
+                   const Vec<D> uw = P.v[w];
+                   if (sumW > 0) {
+                     const bool accelerated = P.id[w] >= moving.firstId && P.id[w] < moving.endId;
+                     P.p[w] = std::max(Real(0),
+                                       (sumPW + (accelerated ? movingBody : bodyAcceleration).dot(sumRhoRW)) / sumW);
+                     P.rho[w] = e.density(P.p[w]);
+                     const Vec<D> vFluid = sumVW / sumW;
+                     P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;
+                   } else {
+                     P.p[w] = 0;
+                     P.rho[w] = rho0;
+                     P.vWall[w] = uw;
+                   }
+                   if (withSoundSpeed) P.c[w] = e.soundSpeed(P.rho[w]);
+                 });
 }
 
 }  // namespace sph

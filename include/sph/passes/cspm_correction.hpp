@@ -31,7 +31,7 @@
 
 #include "sph/boundaries/wall_sums.hpp"
 #include "sph/kernels/kernels.hpp"
-#include "sph/neighbour_list.hpp"
+#include "sph/neighbour_walk.hpp"
 #include "sph/particles.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/term_bits.hpp"
@@ -40,28 +40,22 @@
 #include <Eigen/LU>
 
 #include <optional>
-#include <variant>
 
 namespace sph {
 
 constexpr Real kCspmMinEigenvalue = 0.2;
 
-// M_i of fluid particle i.
-// M_i with r_ij = x_i - x_j (a neighbour across a periodic face is a ghost).
+// M_i of fluid particle i, from its row (r_ij = x_i - x_j; a neighbour
+// across a periodic face is a ghost).
 template <int D, class K>
-inline Mat<D> cspmMoment(std::size_t i, const Particles<D>& P, const NeighbourList<D>& neighbours, const K& kernel,
-                         bool wallsInSums) {
+inline Mat<D> cspmMoment(const NeighbourRow<D>& row, const Particles<D>& P, const K& kernel, bool wallsInSums) {
   Mat<D> M = Mat<D>::Zero();
-  const Vec<D> xi = P.x[i];
-  auto add = [&](std::uint32_t j) {
-    const Vec<D> rij = xi - P.x[j];
+  row.forEachSummed(wallsInSums, [&](std::uint32_t j, const Vec<D>& rij) {
     const Real r = rij.norm();
     if (!(r > 0)) return;
     // (x_j - x_i) (x) grad_i W_ij = -(W'/r) rij rij^T
     M.noalias() -= (P.m[j] / P.rho[j] * kernel.dWdr_r(r)) * (rij * rij.transpose());
-  };
-  if (wallsInSums) neighbours.forEach(i, add);
-  else neighbours.forEachByKind(i, add, [](std::uint32_t) {});
+  });
   return M;
 }
 
@@ -91,23 +85,17 @@ struct CspmCorrectionPass {
 template <int D>
 unsigned CspmCorrectionPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
   const std::size_t n = P.fluidCount();
-  long fallbacks = 0;
-  std::visit(
-      [&](const auto& k) {
-        {
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
-          for (std::size_t i = 0; i < n; ++i) {
-            const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(i, P, neighbours, k, walls.inSums));
-            if (L) {
-              P.cspmL[i] = *L;
-            } else {
-              P.cspmL[i] = Mat<D>::Identity();
-              ++fallbacks;
-            }
-          }
+  const long fallbacks = walkNeighbours<long>(
+      P, neighbours, WalkOver::kFluid, kernel,
+      [&](std::size_t i, const NeighbourRow<D>& row, long& fallback, const auto& k) {
+        const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(row, P, k, walls.inSums));
+        if (L) {
+          P.cspmL[i] = *L;
+        } else {
+          P.cspmL[i] = Mat<D>::Identity();
+          ++fallback;
         }
-      },
-      kernel);
+      });
   if (ctx.counts) {
     ctx.counts->cspmParticles += static_cast<long>(n);
     ctx.counts->cspmFallbacks += fallbacks;

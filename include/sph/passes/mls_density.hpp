@@ -40,27 +40,25 @@ namespace sph {
 
 constexpr Real kMlsMinRcond = 1e-3;
 
-// The MLS density of fluid particle i, or nothing when A_i is singular.
-// r_ij = x_i - x_j (a neighbour across a periodic face is a ghost).
+// The MLS density of fluid particle i, or nothing when A_i is singular;
+// from its row (r_ij = x_i - x_j; a neighbour across a periodic face is a
+// ghost).
 template <int D, class K>
-inline std::optional<Real> mlsDensity(std::size_t i, const Particles<D>& P, const NeighbourList<D>& neighbours,
-                                      const K& kernel, bool wallsInSums) {
+inline std::optional<Real> mlsDensity(const NeighbourRow<D>& row, const Particles<D>& P, const K& kernel,
+                                      bool wallsInSums) {
   using Vp = Eigen::Matrix<Real, D + 1, 1>;
   using Mp = Eigen::Matrix<Real, D + 1, D + 1>;
+  const std::size_t i = row.index();
   const Real invH = 1 / kernel.h();
-  const Vec<D> xi = P.x[i];
   Mp A = Mp::Zero();
   const Real W0 = kernel.W(0);
   A(0, 0) = P.m[i] / P.rho[i] * W0;
-  auto moment = [&](std::uint32_t j) {
-    const Vec<D> rij = xi - P.x[j];
+  row.forEachSummed(wallsInSums, [&](std::uint32_t j, const Vec<D>& rij) {
     Vp p;
     p[0] = 1;
     p.template tail<D>() = rij * invH;
     A.noalias() += (P.m[j] / P.rho[j] * kernel.W(rij.norm())) * (p * p.transpose());
-  };
-  if (wallsInSums) neighbours.forEach(i, moment);
-  else neighbours.forEachByKind(i, moment, [](std::uint32_t) {});
+  });
   Eigen::SelfAdjointEigenSolver<Mp> eig;
   if constexpr (D + 1 <= 3) eig.computeDirect(A, Eigen::EigenvaluesOnly);
   else eig.compute(A, Eigen::EigenvaluesOnly);
@@ -70,12 +68,9 @@ inline std::optional<Real> mlsDensity(std::size_t i, const Particles<D>& P, cons
   if (ldlt.info() != Eigen::Success) return std::nullopt;
   const Vp beta = ldlt.solve(Vp::Unit(0));
   Real rho = P.m[i] * beta[0] * W0;
-  auto add = [&](std::uint32_t j) {
-    const Vec<D> rij = xi - P.x[j];
+  row.forEachSummed(wallsInSums, [&](std::uint32_t j, const Vec<D>& rij) {
     rho += P.m[j] * (beta[0] + beta.template tail<D>().dot(rij * invH)) * kernel.W(rij.norm());
-  };
-  if (wallsInSums) neighbours.forEach(i, add);
-  else neighbours.forEachByKind(i, add, [](std::uint32_t) {});
+  });
   return rho;
 }
 
@@ -97,23 +92,17 @@ template <int D>
 unsigned MlsDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
   if (!reinitDue(ctx, every)) return 0;
   const std::size_t n = P.fluidCount();
-  long fallbacks = 0;
-  std::visit(
-      [&](const auto& k) {
-        {
-#pragma omp parallel for schedule(static) reduction(+ : fallbacks) if (n >= kMinParallelSize)
-          for (std::size_t i = 0; i < n; ++i) {
-            const std::optional<Real> rho = mlsDensity(i, P, neighbours, k, walls.inSums);
-            if (rho) {
-              P.rhoReinit[i] = *rho;
-            } else {
-              P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, walls.inSums);
-              ++fallbacks;
-            }
-          }
+  const long fallbacks = walkNeighbours<long>(
+      P, neighbours, WalkOver::kFluid, kernel,
+      [&](std::size_t i, const NeighbourRow<D>& row, long& fallback, const auto& k) {
+        const std::optional<Real> rho = mlsDensity(row, P, k, walls.inSums);
+        if (rho) {
+          P.rhoReinit[i] = *rho;
+        } else {
+          P.rhoReinit[i] = shepardDensity(row, P, k, walls.inSums);
+          ++fallback;
         }
-      },
-      kernel);
+      });
   applyReinitialisedDensity(P, eos, clampNegative);
   if (ctx.counts) {
     ++ctx.counts->reinitSteps;

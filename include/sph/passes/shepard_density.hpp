@@ -28,7 +28,7 @@
 
 #include "sph/boundaries/wall_sums.hpp"
 #include "sph/kernels/kernels.hpp"
-#include "sph/neighbour_list.hpp"
+#include "sph/neighbour_walk.hpp"
 #include "sph/particles.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/equation_of_state.hpp"
@@ -41,21 +41,19 @@ namespace sph {
 // Whether a re-initialisation runs after step `step`: every `every` steps.
 inline bool reinitDue(const StepContext& ctx, long every) { return every > 0 && ctx.step > 0 && ctx.step % every == 0; }
 
-// The Shepard density of fluid particle i: sum m_j W_ij / sum V_j W_ij.
-// r_ij = x_i - x_j (a neighbour across a periodic face is a ghost).
+// The Shepard density of fluid particle i: sum m_j W_ij / sum V_j W_ij,
+// from its row (r_ij = x_i - x_j; a neighbour across a periodic face is a
+// ghost).
 template <int D, class K>
-inline Real shepardDensity(std::size_t i, const Particles<D>& P, const NeighbourList<D>& neighbours, const K& kernel,
-                           bool wallsInSums) {
+inline Real shepardDensity(const NeighbourRow<D>& row, const Particles<D>& P, const K& kernel, bool wallsInSums) {
+  const std::size_t i = row.index();
   const Real W0 = kernel.W(0);
   Real sumMW = P.m[i] * W0, sumVW = P.m[i] / P.rho[i] * W0;
-  const Vec<D> xi = P.x[i];
-  auto add = [&](std::uint32_t j) {
-    const Real W = kernel.W(Vec<D>(xi - P.x[j]).norm());
+  row.forEachSummed(wallsInSums, [&](std::uint32_t j, const Vec<D>& rij) {
+    const Real W = kernel.W(rij.norm());
     sumMW += P.m[j] * W;
     sumVW += P.m[j] / P.rho[j] * W;
-  };
-  if (wallsInSums) neighbours.forEach(i, add);
-  else neighbours.forEachByKind(i, add, [](std::uint32_t) {});
+  });
   return sumMW / sumVW;
 }
 
@@ -93,14 +91,10 @@ template <int D>
 unsigned ShepardDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
   if (!reinitDue(ctx, every)) return 0;
   const std::size_t n = P.fluidCount();
-  std::visit(
-      [&](const auto& k) {
-        {
-#pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-          for (std::size_t i = 0; i < n; ++i) P.rhoReinit[i] = shepardDensity(i, P, neighbours, k, walls.inSums);
-        }
-      },
-      kernel);
+  walkNeighbours(P, neighbours, WalkOver::kFluid, kernel,
+                 [&](std::size_t i, const NeighbourRow<D>& row, const auto& k) {
+                   P.rhoReinit[i] = shepardDensity(row, P, k, walls.inSums);
+                 });
   applyReinitialisedDensity(P, eos, clampNegative);
   if (ctx.counts) {
     ++ctx.counts->reinitSteps;

@@ -55,8 +55,7 @@ struct SummationDensityPass {
 // Defined here, instantiated once (src/instantiate_*.cpp).
 template <int D>
 unsigned SummationDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-  std::visit([&](const auto& W, const auto& e) { computeSummationDensity(P, neighbours, W, e, walls.inSums, clampNegative); },
-             kernel, eos);
+  computeSummationDensity(P, neighbours, kernel, eos, walls.inSums, clampNegative);
   return term_bits::kSummationDensity | term_bits::kEquationOfState;
 }
 
