@@ -5,6 +5,7 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <string>
 
 using namespace sph;
 
@@ -116,7 +117,8 @@ BOOST_AUTO_TEST_CASE(viscosity_with_zero_coefficient_is_not_constructed) {
 }
 
 // No walls: no wall fields (kind, vWall), no wall pass, no density rate
-// with summation density. Dummy walls bring their fields and their pass;
+// with summation density. Dummy walls bring their fields and their pass,
+// vWall only with a viscosity that reads it (laplacian, morris);
 // continuity density its rate; dynamic walls no extrapolation pass.
 BOOST_AUTO_TEST_CASE(walls_and_continuity_cost_nothing_when_off) {
   CaseConfig c = block(2);
@@ -142,12 +144,26 @@ BOOST_AUTO_TEST_CASE(walls_and_continuity_cost_nothing_when_off) {
   const auto& Q = dummy.particles();
   BOOST_TEST(Q.hasWalls());
   BOOST_TEST(Q.kind.size() == Q.size());
-  BOOST_TEST(Q.vWall.size() == Q.size());
+  BOOST_TEST(Q.vWall.empty());  // viscosity none
   BOOST_TEST(Q.drho.size() == Q.size());
   BOOST_TEST(Q.vHalf.size() == Q.size());  // leap-frog's half-step velocity (rho is advanced like x: no half step)
   const unsigned ran = executed(dummy);
   for (unsigned bit : {kAdamiWalls, kContinuityDensity, kDensityDiffusion}) BOOST_TEST((ran & bit) != 0u);
   BOOST_TEST((ran & (kSummationDensity | kRepulsiveWalls)) == 0u);
+
+  // The wall velocity vWall: for the viscosities that read it.
+  for (const char* boundary : {"dummy", "dynamic"})
+    for (const char* viscosity : {"monaghan", "laplacian", "morris"}) {
+      CaseConfig v = w;
+      v.boundary = boundary;
+      v.viscosity = viscosity;
+      v.alpha = 0.02, v.beta = 0;
+      Scene<2> s = test::sceneOf<2>(v);
+      BOOST_REQUIRE(!s.step());
+      const bool reads = std::string(viscosity) != "monaghan";
+      BOOST_TEST(s.particles().vWall.size() == (reads ? s.particles().size() : 0u),
+                 boundary << " walls, viscosity " << viscosity);
+    }
 
   w.boundary = "dynamic";
   Scene<2> dynamic = test::sceneOf<2>(w);

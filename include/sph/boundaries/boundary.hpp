@@ -79,6 +79,7 @@ struct BoundaryBuild {
   const EquationOfState& eos;
   Real restDensity;
   bool noSlip;   // dummy/dynamic walls in the viscous term (wall_slip)
+  bool wallVelocity;  // the viscosity reads the velocity a wall shows the fluid, vWall (laplacian, morris)
   Real spacing;  // the fluid's spacing dx
   const std::optional<SinusoidalWallMotion<D>>& wallMotion;  // a paddle
   Vec<D> g;      // the body acceleration

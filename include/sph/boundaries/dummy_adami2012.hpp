@@ -10,7 +10,8 @@
 // velocity and acceleration (0 for a fixed wall). The walls then enter the
 // fluid's pressure term with p_w, rho_w and its viscous term with vWall_w
 // (the continuity term uses the wall's own velocity u_w). A wall particle
-// with no fluid neighbour gets p = 0, rho = rho0, vWall = u_w.
+// with no fluid neighbour gets p = 0, rho = rho0, vWall = u_w. (vWall is
+// only there when the viscosity reads it: laplacian and Morris.)
 // A wall never pulls: p_w = max(p_w, 0). Tension extrapolated from a free
 // surface next to a wall would otherwise glue fluid particles to it (and
 // draw them into it); DualSPHysics keeps its boundary densities >= rho0
@@ -44,6 +45,7 @@ void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, con
                         const WallAcceleration<D>& moving = {}) {
   const Vec<D> movingBody = bodyAcceleration - moving.a;
   const bool withSoundSpeed = !P.c.empty();
+  const bool withWallVelocity = !P.vWall.empty();  // only the laplacian and Morris viscosities read it
   walkNeighbours(P, neighbours, WalkOver::kWalls, std::tie(kernel, eos),
                  [&](std::size_t w, const NeighbourRow<D>& row, const auto& k, const auto& e) {
                    Real sumW = 0, sumPW = 0;
@@ -53,7 +55,7 @@ void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, con
                      sumW += W;
                      sumPW += P.p[f] * W;
                      sumRhoRW += (P.rho[f] * W) * rwf;
-                     sumVW += W * P.v[f];
+                     if (withWallVelocity) sumVW += W * P.v[f];
                    });
                    const Vec<D> uw = P.v[w];
                    if (sumW > 0) {
@@ -61,12 +63,14 @@ void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, con
                      P.p[w] = std::max(Real(0),
                                        (sumPW + (accelerated ? movingBody : bodyAcceleration).dot(sumRhoRW)) / sumW);
                      P.rho[w] = e.density(P.p[w]);
-                     const Vec<D> vFluid = sumVW / sumW;
-                     P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;
+                     if (withWallVelocity) {
+                       const Vec<D> vFluid = sumVW / sumW;
+                       P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;
+                     }
                    } else {
                      P.p[w] = 0;
                      P.rho[w] = rho0;
-                     P.vWall[w] = uw;
+                     if (withWallVelocity) P.vWall[w] = uw;
                    }
                    if (withSoundSpeed) P.c[w] = e.soundSpeed(P.rho[w]);
                  });

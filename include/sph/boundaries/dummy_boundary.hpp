@@ -53,8 +53,9 @@ struct DummyBoundary : WallParticleBoundary {
   // Before the forces: p, rho and vWall of the walls from their fluid neighbours.
   template <int D>
   static void beforeForces(BoundaryBuild<D>& b) {
-    b.info.needs |= fieldBit(kFieldVWall);
-    b.passes.push_back(makePass(AdamiWallsPass<D>{b.kernel, b.eos, b.g, b.noSlip, b.restDensity, b.wallMotion}));
+    if (b.wallVelocity) b.info.needs |= fieldBit(kFieldVWall);
+    b.passes.push_back(
+        makePass(AdamiWallsPass<D>{b.kernel, b.eos, b.g, b.noSlip, b.restDensity, b.wallMotion, b.wallVelocity}));
     b.info.termNames.push_back("dummy_walls_adami2012");
   }
 };

@@ -43,7 +43,7 @@ struct DynamicBoundary : WallParticleBoundary {
 
   template <int D>
   static void beforeForces(BoundaryBuild<D>& b) {
-    b.info.needs |= fieldBit(kFieldVWall);
+    if (b.wallVelocity) b.info.needs |= fieldBit(kFieldVWall);
     b.info.termNames.push_back("dynamic_walls_crespo2007");
   }
 };

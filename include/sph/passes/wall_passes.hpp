@@ -37,13 +37,15 @@ struct AdamiWallsPass {
   bool noSlip = true;
   Real rho0 = 1000;
   std::optional<SinusoidalWallMotion<D>> motion;  // a paddle's a_w (wall_motion.hpp)
+  bool wallVelocity = true;  // extrapolate vWall (the viscosity reads it)
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
   // run() reads x, the fluid's p, rho and v and the wall's own v (its id:
-  // a paddle's); writes the walls' p, rho, vWall and c.
+  // a paddle's); writes the walls' p, rho, c and, when the viscosity reads
+  // it, vWall.
   FieldAccess fields(const StepContext&) const {
     return {fieldBits(kFieldX, kFieldP, kFieldRho, kFieldV) | (motion ? fieldBit(kFieldId) : 0u),
-            fieldBits(kFieldP, kFieldRho, kFieldVWall, kFieldC)};
+            fieldBits(kFieldP, kFieldRho, kFieldC) | (wallVelocity ? fieldBit(kFieldVWall) : 0u)};
   }
 };
 
