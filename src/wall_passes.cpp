@@ -6,6 +6,8 @@
 #include "sph/neighbour_walk.hpp"
 #include "sph/terms/term_bits.hpp"
 
+#include <algorithm>
+
 namespace sph {
 
 template <int D>
@@ -15,6 +17,15 @@ unsigned AdamiWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
              : WallAcceleration<D>{};
   extrapolateToWalls(P, neighbours, kernel, eos, bodyAcceleration, noSlip, rho0, moving);
   return term_bits::kAdamiWalls;
+}
+
+// A dynamic wall shows the viscous term its own velocity (a paddle's
+// moves; a fixed wall's is 0).
+template <int D>
+unsigned DynamicWallVelocityPass<D>::run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const {
+  const auto first = static_cast<std::ptrdiff_t>(P.fluidCount()), end = static_cast<std::ptrdiff_t>(P.size());
+  std::copy(P.v.begin() + first, P.v.begin() + end, P.vWall.begin() + first);
+  return 0;
 }
 
 // The walls' force on each fluid particle from its wall neighbours
@@ -31,6 +42,8 @@ unsigned RepulsiveWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& nei
 
 template struct AdamiWallsPass<2>;
 template struct AdamiWallsPass<3>;
+template struct DynamicWallVelocityPass<2>;
+template struct DynamicWallVelocityPass<3>;
 template struct RepulsiveWallsPass<2>;
 template struct RepulsiveWallsPass<3>;
 

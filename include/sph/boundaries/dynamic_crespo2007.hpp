@@ -20,6 +20,7 @@
 
 #include "sph/boundaries/dummy_boundary.hpp"
 #include "sph/boundaries/wall_particle_boundary.hpp"
+#include "sph/passes/wall_passes.hpp"
 
 namespace sph {
 
@@ -43,7 +44,12 @@ struct DynamicBoundary : WallParticleBoundary {
 
   template <int D>
   static void beforeForces(BoundaryBuild<D>& b) {
-    if (b.wallVelocity) b.info.needs |= fieldBit(kFieldVWall);
+    // The laplacian and Morris viscosities read the walls' velocity from
+    // vWall: a dynamic wall's is its own.
+    if (b.wallVelocity) {
+      b.info.needs |= fieldBit(kFieldVWall);
+      b.passes.push_back(makePass(DynamicWallVelocityPass<D>{}));
+    }
     b.info.termNames.push_back("dynamic_walls_crespo2007");
   }
 };

@@ -4,9 +4,12 @@
 //                        before the forces (dummy_adami2012.hpp)
 //   RepulsiveWallsPass   repulsive walls: their force, after the forces
 //                        (repulsive_liu2012.hpp)
-// Dynamic walls (dynamic_crespo2007.hpp) need no pass of their own: the
-// equation of state runs over them and the force pass gives them a density
-// rate.
+//   DynamicWallVelocityPass  dynamic walls: the velocity they show the
+//                        viscous term is their own, vWall = v (only with a
+//                        viscosity that reads vWall: laplacian, Morris)
+// Otherwise dynamic walls (dynamic_crespo2007.hpp) need no pass of their
+// own: the equation of state runs over them and the force pass gives them
+// a density rate.
 // The boundary types that add these passes (dummy_boundary.hpp,
 // repulsive_boundary.hpp) are included wherever the method tables are, so
 // this file declares the passes only: their run() is in src/wall_passes.cpp,
@@ -47,6 +50,15 @@ struct AdamiWallsPass {
     return {fieldBits(kFieldX, kFieldP, kFieldRho, kFieldV) | (motion ? fieldBit(kFieldId) : 0u),
             fieldBits(kFieldP, kFieldRho, kFieldC) | (wallVelocity ? fieldBit(kFieldVWall) : 0u)};
   }
+};
+
+template <int D>
+struct DynamicWallVelocityPass {
+  static constexpr const char* name = "dynamic_wall_velocity";
+
+  unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
+  // run() reads the walls' v; writes their vWall.
+  FieldAccess fields(const StepContext&) const { return {fieldBit(kFieldV), fieldBit(kFieldVWall)}; }
 };
 
 template <int D>
