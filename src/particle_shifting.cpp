@@ -4,6 +4,7 @@
 
 #include "sph/neighbour_list.hpp"
 #include "sph/pair_loop.hpp"
+#include "sph/terms/shifting_sums.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -52,9 +53,7 @@ void ParticleShifting<D>::apply(Particles<D>& P, const NeighbourList<D>& neighbo
                   const Real r = rij.norm();
                   if (r <= 0) return;
                   const Real Vj = fluid ? P.m[j] / P.rho[j] : P.m[j] / rho0_;
-                  const Real w = W.W(r), q = w * invWdx, q2 = q * q;
-                  sum += Vj * w;
-                  gradC += (Vj * (1 + 0.2 * q2 * q2)) * W.gradW(rij, r);
+                  addShiftingPair<D>(Vj, W.W(r), invWdx, W.gradW(rij, r), sum, gradC);
                 };
                 forEachNeighbourSeparationByKind(
                     P, neighbours, i, [&](std::uint32_t j, const Vec<D>& rij) { add(j, rij, true); },

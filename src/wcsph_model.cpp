@@ -86,12 +86,9 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
 
   PassList<D> passes;
   const BoundaryHooks<D>& boundary = s.boundary.template hooks<D>();
-  // Only the laplacian and Morris viscosities read vWall (Monaghan's reads
-  // the wall's own v): without them the array is not allocated.
-  const bool wallVelocity = std::holds_alternative<LaplacianViscosityChoice>(s.viscosity) ||
-                            std::holds_alternative<MorrisViscosityChoice>(s.viscosity);
-  BoundaryBuild<D> build{s.kernel,     s.eos, s.restDensity, s.noSlip, wallVelocity, s.spacing,
-                         s.wallMotion, g,     c0,            h,        passes,       info};
+  // vWall is allocated only for a viscosity that reads it.
+  BoundaryBuild<D> build{s.kernel,     s.eos, s.restDensity, s.noSlip, readsWallVelocity(s.viscosity), s.spacing,
+                         s.wallMotion, g,     c0,            h,        passes,                         info};
   if (continuity) {
     passes.push_back(makePass(EquationOfStatePass<D>{s.eos, walls, s.clampNegative, s.restDensity}));
   } else {

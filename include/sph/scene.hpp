@@ -378,7 +378,6 @@ class Scene {
   std::optional<ShiftingPass<D>> shifting_;
   std::optional<WallMotionPass<D>> wallMotion_;
   long guardActions_ = 0;
-  bool shiftSumsGiven_ = false;  // the particles hold particle shifting's sums at their state (terms/shifting_sums.hpp)
   FieldSet carriedMissing_ = 0;  // integrator state the particles came without
   bool listRecorded_ = false;     // the particles came with their list_build_position
   HashGrid<D> grid_;
@@ -405,7 +404,6 @@ std::optional<StateFailure> Scene<D>::initialise(bool scaleMass) {
     P_.refreshGhosts();
   }
   model_.evaluate(P_, neighbours_, StepContext{step_, time_, 0});
-  shiftSumsGiven_ = model_.shiftSums();
   return finishStep([](std::size_t) {});
 }
 
@@ -428,7 +426,6 @@ std::optional<StateFailure> Scene<D>::resume(long step, Real time, bool inSortOr
     if (checkOrder) checkResumeOrder("");
   }
   model_.refreshCspmMatrices(P_, neighbours_);
-  shiftSumsGiven_ = false;  // a snapshot does not hold them: the first shift walks
   return finishStep([](std::size_t) {});
 }
 
@@ -437,7 +434,7 @@ std::optional<StateFailure> Scene<D>::step(Real landOn) {
   const TimeStepChoice choice = timeStep_.next(extremes_, model_, time_, landOn);
   lastStep_ = choice;
   context_ = StepContext{step_ + 1, time_ + choice.dt, choice.dt, time_};
-  context_.shiftSumsGiven = shiftSumsGiven_;
+  context_.shiftSumsGiven = model_.shiftSumsAtState();
   WallGuard<D>* guard = walls_.guard();
   if (guard && wallMotion_ && guard->paddle >= 0) {
     // The case places the paddle at t = 0, where sin = 0.
@@ -468,11 +465,7 @@ std::optional<StateFailure> Scene<D>::step(Real landOn) {
       },
       integrator_);
   guardActions_ += guarded;
-  // The step's last evaluation was at its end state: the next shift takes
-  // its sums from it, unless a re-initialisation changed the densities.
-  shiftSumsGiven_ = model_.shiftSums();
   if (!failure) model_.afterStep(P_, neighbours_, context_);
-  if (model_.changedAfterStep()) shiftSumsGiven_ = false;
   ++step_;
   // A step cut to land on end_time or an output time ends exactly there
   // (time + (t - time) can miss t by one ulp).

@@ -68,6 +68,7 @@ class Model {
   void evaluate(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
     executed_ = runPasses(passes_, P, neighbours, ctx) | (ctx.densityRateApart ? densityRateBits_ : 0u);
     executedAfterStep_ = 0;
+    evaluated_ = true;
   }
 
   // d rho/dt alone, at the particles' x and v with the given neighbour list
@@ -111,14 +112,15 @@ class Model {
   FieldSet needs() const { return info_.needs; }
   const std::vector<std::string>& termNames() const { return info_.termNames; }
   bool forcesSeeHalfStepVelocity() const { return info_.forcesSeeHalfStepVelocity; }
-  bool shiftSums() const { return info_.shiftSums; }
+  // Whether the particles hold particle shifting's sums at their state: the
+  // model's last evaluation left them and no re-initialisation ran after it
+  // (none before the first evaluation: a resumed scene's first shift walks).
+  bool shiftSumsAtState() const { return info_.shiftSums && evaluated_ && executedAfterStep_ == 0; }
   const PassList<D>& passes() const { return passes_; }
   const PassList<D>& afterStepPasses() const { return afterStep_; }
   const PassList<D>& densityRatePasses() const { return densityRate_; }
   // The term bits the last evaluate() and the afterStep() after it ran (term_bits.hpp).
   unsigned executedTerms() const { return executed_ | executedAfterStep_; }
-  // Whether the last afterStep() changed the state (a re-initialisation ran).
-  bool changedAfterStep() const { return executedAfterStep_ != 0; }
   // What the kernel corrections did so far (step_context.hpp).
   const CorrectionCounts& correctionCounts() const { return counts_; }
 
@@ -172,6 +174,7 @@ class Model {
   PassList<D> afterStep_;
   PassList<D> densityRate_;
   mutable unsigned executed_ = 0, executedAfterStep_ = 0, densityRateBits_ = 0;
+  mutable bool evaluated_ = false;
   mutable CorrectionCounts counts_;
 };
 

@@ -28,6 +28,12 @@ struct MorrisViscosityChoice {
 using ViscosityChoice =
     std::variant<NoViscosity, LaplacianViscosityChoice, MonaghanViscosityChoice, MorrisViscosityChoice>;
 
+// Whether the viscosity reads the velocity a wall particle shows the fluid
+// (vWall: laplacian and Morris; Monaghan's reads the wall's own v).
+inline bool readsWallVelocity(const ViscosityChoice& v) {
+  return std::holds_alternative<LaplacianViscosityChoice>(v) || std::holds_alternative<MorrisViscosityChoice>(v);
+}
+
 // How the density is found (density key).
 enum class DensityTreatment { kSummation, kContinuity };
 

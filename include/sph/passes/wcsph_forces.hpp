@@ -131,14 +131,9 @@ struct WcsphForcePass {
   // apart, the XSPH correction, and particle shifting's sums when asked.
   FieldAccess fields(const StepContext& ctx) const {
     const bool rateHere = continuity && !ctx.densityRateApart;
-    const FieldSet viscous = std::visit(
-        [&](const auto& v) -> FieldSet {
-          using V = std::decay_t<decltype(v)>;
-          if constexpr (std::is_same_v<V, NoViscosity>) return 0;
-          else if constexpr (std::is_same_v<V, MonaghanViscosityChoice>) return fieldBits(kFieldV, kFieldC);
-          else return fieldBit(kFieldV) | (walls.inSums ? fieldBit(kFieldVWall) : 0u);
-        },
-        viscosity);
+    FieldSet viscous = std::holds_alternative<NoViscosity>(viscosity) ? 0u : fieldBit(kFieldV);
+    if (std::holds_alternative<MonaghanViscosityChoice>(viscosity)) viscous |= fieldBit(kFieldC);
+    if (walls.inSums && readsWallVelocity(viscosity)) viscous |= fieldBit(kFieldVWall);
     FieldSet reads = fieldBits(kFieldX, kFieldM, kFieldRho, kFieldP) | viscous | bodies.reads();
     if (rateHere || xsphEpsilon > 0) reads |= fieldBit(kFieldV);
     if (cspm) reads |= fieldBit(kFieldCspmL);

@@ -9,15 +9,28 @@
 // pass's last evaluation of a step is at the state the shift acts on (x and
 // rho at the step's end), with the same neighbour list, so the sums are
 // those the shift's own walk would take, pair for pair and in the same
-// order (bit for bit: tests/test_shifting.cpp); the scene uses them unless
-// something changed the state since (a density re-initialisation, a resume:
-// then the shift walks the neighbours itself). Coincident particles (r = 0)
-// are left out, as the walk does. Off: one predictable branch per pair.
+// order, with the same addShiftingPair() (bit for bit: the shifting
+// variants of tests/test_run_folder.cpp's resume test, whose first shift
+// walks); the scene uses them unless something changed the state since (a
+// density re-initialisation, a resume: then the shift walks the neighbours
+// itself). Coincident particles (r = 0) are left out, as the walk does.
+// Off: one predictable branch per pair.
 #pragma once
 
 #include "sph/pair_loop.hpp"
 
 namespace sph {
+
+// Neighbour j's part of the two sums: V_j W_ij and V_j [1 + R (W_ij /
+// W(dx))^n] grad_i W_ij (R = 0.2, n = 4). The shift's own walk
+// (src/particle_shifting.cpp) adds the same.
+template <int D>
+[[gnu::always_inline]] inline void addShiftingPair(Real Vj, Real w, Real invWdx, const Vec<D>& gradW, Real& sum,
+                                                   Vec<D>& grad) {
+  const Real q = w * invWdx, q2 = q * q;
+  sum += Vj * w;
+  grad += (Vj * (1 + 0.2 * q2 * q2)) * gradW;
+}
 
 template <class Kernel, bool kWall = false>
 struct ShiftingSums {
@@ -34,9 +47,7 @@ struct ShiftingSums {
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
     if (!on || !(c.r > 0)) return;
     const Real Vj = kWall ? P.m[c.j] / rho0 : P.m[c.j] / P.rho[c.j];
-    const Real w = kernel.W(c.r), q = w * invWdx, q2 = q * q;
-    r.shiftSum += Vj * w;
-    r.shiftGrad += (Vj * (1 + 0.2 * q2 * q2)) * c.gradW;
+    addShiftingPair<D>(Vj, kernel.W(c.r), invWdx, c.gradW, r.shiftSum, r.shiftGrad);
   }
 };
 
