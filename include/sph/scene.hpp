@@ -25,10 +25,13 @@
 // ghosts are made in the order of ids), so it holds the pairs, in the
 // order, of the list the interrupted run had, and goes on bit for bit,
 // wherever it was stopped. s = 0: a list per evaluation, as before (the
-// seed scheme). The ghosts are refreshed from their
-// sources wherever the owned particles changed and a neighbour walk follows:
-// between passes (Model::sync), before the integrators' density-rate pass,
-// after the mass scaling and after each step. One step = the scene's own
+// seed scheme). The ghosts (and MPI halos) are refreshed from their
+// sources wherever the owned particles changed and a neighbour walk follows,
+// each time with only the fields that changed: a pass's declared writes
+// (Model::sync), the integrator's advanced state (x, v, rho:
+// integrator_support.hpp) at a list check and before its density-rate
+// pass, what its finish() wrote after each step; every field after the
+// mass scaling and when a sort makes them anew. One step = the scene's own
 // passes at its start (shifting, wall motion: passes/step_start.hpp, each
 // followed by the ghosts of what it wrote), the integrator's advance (as many evaluate() calls as it
 // needs: 1 for leap-frog and the Euler schemes, 4 for RK4; the walls act on
@@ -102,6 +105,8 @@ class Scene {
       if (((integratorNeeds >> info.id) & 1u) && info.role == FieldRole::kState && field.size() != n)
         carriedMissing_ |= fieldBit(info.id);
     });
+    advanced_ = advancedState(density);
+    finished_ = std::visit([](const auto& i) { return i.finishes(); }, integrator_);
     listRecorded_ = n > 0 && P_.xList.size() == n;
     P_.allocate(model_.needs() | integratorNeeds | (skin_ > 0 ? fieldBit(kFieldXList) : FieldSet(0)));
     if (auto* leapFrog = std::get_if<LeapFrog<D>>(&integrator_))
@@ -173,6 +178,7 @@ class Scene {
   void prepareList() {
     if (skin_ == 0 || !neighbours_.bound() || !listStillHolds()) sort();
   }
+  const Integrator<D>& integrator() const { return integrator_; }
   // Builds of the neighbour list so far (one per evaluation without a skin).
   long listBuilds() const { return listBuilds_; }
   PeriodicBox<D> periodicBox() const { return ghosts_ ? ghosts_->box() : PeriodicBox<D>{}; }
@@ -280,7 +286,8 @@ class Scene {
 
   // Every owned particle within half the skin of its position at the last
   // build (the largest displacement, a max reduction), in one parallel
-  // region with the ghosts' refresh from their sources.
+  // region with the refresh of the ghosts' advanced state from their
+  // sources (the rest they hold from the last evaluation's syncs).
   bool listStillHolds() {
     const std::size_t n = P_.size();
     const Real half = skinDistance() / 2;
@@ -289,12 +296,12 @@ class Scene {
     {
 #pragma omp for schedule(static) reduction(max : worst2)
       for (std::size_t i = 0; i < n; ++i) worst2 = std::max(worst2, Vec<D>(P_.x[i] - P_.xList[i]).squaredNorm());
-      P_.refreshGhostsInTeam();
+      P_.refreshGhostsInTeam(advanced_);
     }
     if (!decomposition_) return worst2 <= half * half;
     // Every rank rebuilds when one must (the sort migrates: collective).
     const bool holds = mpi::allMax(comm_, worst2) <= half * half;
-    if (holds) P_.refreshRemoteGhosts();
+    if (holds) P_.refreshRemoteGhosts(advanced_);
     return holds;
   }
 
@@ -379,6 +386,8 @@ class Scene {
   std::optional<WallMotionPass<D>> wallMotion_;
   long guardActions_ = 0;
   FieldSet carriedMissing_ = 0;  // integrator state the particles came without
+  FieldSet advanced_ = 0;        // the state the integrator advances (advancedState)
+  FieldSet finished_ = 0;        // ... and the fields its finish() writes
   bool listRecorded_ = false;     // the particles came with their list_build_position
   HashGrid<D> grid_;
   NeighbourList<D> neighbours_;
@@ -456,12 +465,12 @@ std::optional<StateFailure> Scene<D>::step(Real landOn) {
       [&](const auto& integrator) {
         context_.densityRateApart = std::decay_t<decltype(integrator)>::kDensityRateApart;
         integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain, [&] {
-          if (skin_ == 0) P_.refreshGhosts();
+          if (skin_ == 0) P_.refreshGhosts(advanced_);
           else prepareList();
           model_.densityRate(P_, neighbours_);
         });
         failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
-        P_.refreshGhosts();
+        P_.refreshGhosts(finished_);
       },
       integrator_);
   guardActions_ += guarded;

@@ -19,6 +19,7 @@ struct ExplicitEuler {
   static constexpr const char* kUnstable = "(explicit Euler) gains energy every step whatever dt";
   static constexpr Real kViscousFraction = 1;
   static constexpr bool kDensityRateApart = false;  // the force evaluation gives d rho/dt
+  static constexpr FieldSet finishes() { return 0; }
   static FieldSet needs(bool) { return 0; }
 
   template <class Evaluate, class Constrain, class DensityRate>

@@ -11,6 +11,18 @@
 //   finish(P, i, dt)  completes particle i after that evaluation. The scene
 //       fuses it with the state check and the time-step reductions, so a
 //       step has few parallel regions.
+//
+// What an integrator touches is declared, so that the scene refreshes the
+// ghosts and MPI halos of those fields only (scene.hpp):
+//   advancedState(density)  the state every integrator advances: x and v
+//       of the fluid, rho of every particle when it carries a density rate
+//       (continuity density). Passes read no other field at a neighbour
+//       before they write it, so these are all a neighbour walk after an
+//       advance needs refreshed (test periodic/ghosts_hold_their_sources_
+//       fields_after_every_step);
+//   needs(density)  the integrator's own fields, carried between its
+//       stages or from step to step (allocated by the scene);
+//   finishes()  what finish() writes after the step's last evaluation.
 #pragma once
 
 #include "sph/particles.hpp"
@@ -22,6 +34,10 @@ namespace sph {
 // integrator its class (kAcousticClass).
 enum class AcousticClass { kLeapFrog, kRungeKutta4, kTwoStepLeapFrog };
 constexpr int kAcousticClasses = 3;
+
+constexpr FieldSet advancedState(bool density) {
+  return fieldBits(kFieldX, kFieldV) | (density ? fieldBit(kFieldRho) : FieldSet(0));
+}
 
 // A constraint that does nothing.
 struct NoConstraint {

@@ -38,6 +38,7 @@ struct LeapFrog {
   static constexpr const char* kUnstable = nullptr;
   static constexpr Real kViscousFraction = 1;
   static constexpr bool kDensityRateApart = true;
+  static constexpr FieldSet finishes() { return fieldBit(kFieldV); }
   static FieldSet needs(bool) { return fieldBit(kFieldVHalf); }
 
   // The velocity the forces see between drift and kick (set by the Scene

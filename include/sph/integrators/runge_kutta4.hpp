@@ -21,6 +21,7 @@ struct RungeKutta4 {
   static constexpr const char* kUnstable = nullptr;
   static constexpr Real kViscousFraction = 1;
   static constexpr bool kDensityRateApart = false;  // the force evaluation gives d rho/dt
+  static constexpr FieldSet finishes() { return 0; }
   static FieldSet needs(bool density) {
     return fieldBit(kFieldX0) | fieldBit(kFieldV0) | fieldBit(kFieldDx) | fieldBit(kFieldDv) |
            (density ? fieldBit(kFieldRho0) | fieldBit(kFieldDrhoSum) : 0);

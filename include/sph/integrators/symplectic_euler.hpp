@@ -21,6 +21,7 @@ struct SymplecticEuler {
   static constexpr const char* kUnstable = nullptr;
   static constexpr Real kViscousFraction = 1;
   static constexpr bool kDensityRateApart = true;
+  static constexpr FieldSet finishes() { return 0; }
   static FieldSet needs(bool) { return 0; }
 
   template <class Evaluate, class Constrain, class DensityRate>

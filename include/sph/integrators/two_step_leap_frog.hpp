@@ -73,6 +73,7 @@ struct TwoStepLeapFrog {
   static constexpr Real kViscousFraction = 0.02;
   static constexpr bool kDensityRateApart = false;
   static constexpr Real kFilter = 0.05;  // Robert-Asselin nu
+  static constexpr FieldSet finishes() { return 0; }
   static FieldSet needs(bool density) {
     return fieldBit(kFieldVPrev) | (density ? fieldBit(kFieldRhoPrev) : FieldSet(0));
   }
