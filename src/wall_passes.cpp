@@ -32,7 +32,7 @@ unsigned DynamicWallVelocityPass<D>::run(Particles<D>& P, const NeighbourList<D>
 // (repulsive_liu2012.hpp).
 template <int D>
 unsigned RepulsiveWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-  walkNeighbours(P, neighbours, WalkOver::kFluid, [&](std::size_t i, const NeighbourRow<D>& row) {
+  walkNeighbours(P, neighbours, P.range(ParticleRange::kFluid), [&](std::size_t i, const NeighbourRow<D>& row) {
     Vec<D> a = Vec<D>::Zero();
     row.forEachWall([&](std::uint32_t, const Vec<D>& rij) { a += force.factor(rij.norm()) * rij; });
     P.a[i] += a;

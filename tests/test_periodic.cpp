@@ -377,7 +377,8 @@ BOOST_AUTO_TEST_CASE(momentum_kept_in_a_periodic_box) {
   }
 }
 
-// After every step each ghost holds its source's value of every field a
+// After every step the range table holds fluid, walls, their ghosts in
+// that order, and each ghost holds its source's value of every field a
 // pass may read at a neighbour (x plus the ghost's shift): the scene
 // refreshes after an advance only the declared state the integrator
 // advances and what its finish() writes (integrator_support.hpp), and
@@ -422,6 +423,23 @@ BOOST_AUTO_TEST_CASE(ghosts_hold_their_sources_fields_after_every_step) {
           BOOST_REQUIRE(!scene.step());
           const std::size_t owned = P.size();
           ghosts += P.ghostSource().size();
+          // The range table: contiguous, covering every particle, each
+          // range holding its kind (a ghost its source's).
+          std::size_t next = 0, misplaced = 0;
+          for (ParticleRange r : {ParticleRange::kFluid, ParticleRange::kWalls, ParticleRange::kFluidGhosts,
+                                  ParticleRange::kWallGhosts}) {
+            const IndexRange in = P.range(r);
+            BOOST_REQUIRE(in.begin == next);
+            next = in.end;
+            const bool walls = r == ParticleRange::kWalls || r == ParticleRange::kWallGhosts;
+            for (std::size_t i = in.begin; i < in.end; ++i) {
+              const std::size_t self = i < owned ? i : P.ghostSource()[i - owned];
+              misplaced += (P.kind[self] == kWall) != walls;
+            }
+          }
+          BOOST_REQUIRE(next == P.totalSize());
+          BOOST_TEST(misplaced == 0u);
+          BOOST_TEST(!P.range(ParticleRange::kWallGhosts).empty());
           for (std::size_t g = 0; g < P.ghostSource().size(); ++g) {
             const std::size_t source = P.ghostSource()[g], k = owned + g;
             P.forEachField([&](const FieldInfo& info, const auto& field) {

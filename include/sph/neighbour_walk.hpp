@@ -41,9 +41,6 @@
 
 namespace sph {
 
-// The particles a walk visits: [0, fluidCount), [fluidCount, size), [0, size).
-enum class WalkOver { kFluid, kWalls, kOwned };
-
 // Particle i's neighbours, each as f(j, r_ij), r_ij = x_i - x_j.
 template <int D>
 class NeighbourRow {
@@ -115,17 +112,17 @@ void resolve(F&& f, const First& first, const Rest&... rest) {
 
 }  // namespace walk_detail
 
-// One parallel loop over the particles of `over`:
+// One parallel loop over the particles of `over` (a range of the
+// particles' table: P.range(ParticleRange::kFluid), P.owned(), ...):
 //   f(i, row, choice...)          (Sums = NoSums)
 //   f(i, row, sums, choice...)    (otherwise: this thread's Sums; returned merged)
 // `choices`: a kernel, an EOS, ... or a std::tuple of them (std::tie);
 // each that is a std::variant is resolved once, here, and f gets the
 // alternative. Without choices: walkNeighbours(P, neighbours, over, f).
 template <class Sums = NoSums, int D, class Choices, class F>
-Sums walkNeighbours(const Particles<D>& P, const NeighbourList<D>& neighbours, WalkOver over,
+Sums walkNeighbours(const Particles<D>& P, const NeighbourList<D>& neighbours, IndexRange over,
                     const Choices& choices, F&& f) {
-  const std::size_t begin = over == WalkOver::kWalls ? P.fluidCount() : 0;
-  const std::size_t end = over == WalkOver::kFluid ? P.fluidCount() : P.size();
+  const std::size_t begin = over.begin, end = over.end;
   Sums total{};
   auto loop = [&](const auto&... chosen) {
     // flatten: the pass's body and its walk in the loop itself, as when
@@ -158,7 +155,7 @@ Sums walkNeighbours(const Particles<D>& P, const NeighbourList<D>& neighbours, W
 }
 
 template <class Sums = NoSums, int D, class F>
-Sums walkNeighbours(const Particles<D>& P, const NeighbourList<D>& neighbours, WalkOver over, F&& f) {
+Sums walkNeighbours(const Particles<D>& P, const NeighbourList<D>& neighbours, IndexRange over, F&& f) {
   return walkNeighbours<Sums>(P, neighbours, over, std::tuple<>{}, f);
 }
 

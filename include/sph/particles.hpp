@@ -5,15 +5,18 @@
 // the model or the integrator of a scene asks for them, so a scene pays no
 // memory for what it does not use.
 //
-// Ranges: particles [0, fluidCount()) are fluid, [fluidCount(), size())
-// walls (the kind field, allocated only when there are walls, says which is
-// which and the neighbour grid keeps walls after the fluid through every
-// re-sort); these are the owned particles. After them, while a periodic box
-// has them (periodic_ghosts.hpp), come the ghosts [size(), totalSize()):
-// copies of owned particles shifted by a box length, ghosts of fluid first,
-// then ghosts of walls. Every array has
-// totalSize() entries; size() counts the owned particles only, so the
-// integrators, the checks, the energies and the output never see a ghost.
+// Ranges: one table (range(ParticleRange)) holds where each kind of
+// particle lies, in index order: fluid [0, fluidCount()), walls
+// [fluidCount(), size()) (the kind field, allocated only when there are
+// walls, says which is which and the neighbour grid keeps walls after the
+// fluid through every re-sort); these are the owned particles. After them,
+// while a periodic box or other ranks have them (periodic_ghosts.hpp),
+// come the ghosts [size(), totalSize()): copies of owned particles shifted
+// by a box length, or halo particles; ghosts of fluid first, then ghosts
+// of walls. Every array has totalSize() entries; size() counts the owned
+// particles only, so the integrators, the checks, the energies and the
+// output never see a ghost. The table changes only where the particles'
+// number does (resize, resizeOwned, addGhosts, clearGhosts).
 // A ghost is the output of no pass: refreshGhosts() copies its fields from
 // its source (ghostSource) and puts it at the source's position plus its
 // shift. A ghost whose source has the bit kRemoteSource set is a halo
@@ -39,11 +42,24 @@
 #include "sph/types.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 namespace sph {
+
+// The kinds of particle, in the order of their indices (Particles::range).
+enum class ParticleRange : unsigned { kFluid, kWalls, kFluidGhosts, kWallGhosts };
+constexpr unsigned kParticleRanges = 4;
+
+// Indices [begin, end).
+struct IndexRange {
+  std::size_t begin = 0, end = 0;
+  std::size_t size() const { return end - begin; }
+  bool empty() const { return begin == end; }
+  bool contains(std::size_t i) const { return i >= begin && i < end; }
+};
 
 // The arrays themselves, one per row of the field table.
 template <int D>
@@ -159,16 +175,25 @@ struct Particles : FieldArrays<D> {
   using FieldArrays<D>::kind;
   using FieldArrays<D>::vXsph;
 
+  // The indices of one kind of particle (the range table, above).
+  IndexRange range(ParticleRange r) const {
+    const auto k = static_cast<unsigned>(r);
+    return {bound_[k], bound_[k + 1]};
+  }
   // Owned particles (fluid and walls); the ghosts follow them.
-  std::size_t size() const { return x.size() - ghostSource_.size(); }
-  std::size_t totalSize() const { return x.size(); }
+  IndexRange owned() const { return {0, size()}; }
+  IndexRange ghosts() const { return {size(), totalSize()}; }
+  std::size_t size() const { return bound_[kOwnedEnd]; }
+  std::size_t totalSize() const { return bound_[kParticleRanges]; }
   // Fluid particles are [0, fluidCount()), walls [fluidCount(), size()).
-  std::size_t fluidCount() const { return fluid_; }
+  std::size_t fluidCount() const { return bound_[kFluidEnd]; }
   // Walls among the particles a pass sees: owned ones, or ghosts of walls
   // (on an MPI rank that owns no wall, the halo may hold some).
-  bool hasWalls() const { return fluid_ < size() || ghostFluidEnd() < totalSize(); }
+  bool hasWalls() const {
+    return !range(ParticleRange::kWalls).empty() || !range(ParticleRange::kWallGhosts).empty();
+  }
   // Ghosts of fluid particles are [size(), ghostFluidEnd()), of walls the rest.
-  std::size_t ghostFluidEnd() const { return size() + ghostFluid_; }
+  std::size_t ghostFluidEnd() const { return bound_[kGhostFluidEnd]; }
   const std::vector<std::uint32_t>& ghostSource() const { return ghostSource_; }
   const std::vector<Vec<D>>& ghostShift() const { return ghostShift_; }
   // A ghost source with this bit is a halo particle's receive slot.
@@ -188,10 +213,10 @@ struct Particles : FieldArrays<D> {
     p.resize(n, 0);
     m.resize(n, 0);
     id.resize(n, 0);
-    fluid_ = std::min(fluidCount, n);
+    setOwned(n, fluidCount);
     if (hasWalls()) {
       kind.resize(n);
-      for (std::size_t i = 0; i < n; ++i) kind[i] = i < fluid_ ? kFluid : kWall;
+      for (std::size_t i = 0; i < n; ++i) kind[i] = i < this->fluidCount() ? kFluid : kWall;
       allocated_ |= fieldBit(kFieldKind);
     }
     allocated_ |= kCoreFields;
@@ -214,7 +239,7 @@ struct Particles : FieldArrays<D> {
     const std::size_t n = size();
     this->sizeFields(wanted, n);
     if (hasWalls())
-      for (std::size_t i = 0; i < n; ++i) kind[i] = i < fluid_ ? kFluid : kWall;
+      for (std::size_t i = 0; i < n; ++i) kind[i] = i < fluidCount() ? kFluid : kWall;
     allocated_ = wanted;
     setPermuted();
   }
@@ -233,7 +258,7 @@ struct Particles : FieldArrays<D> {
       if (n > field.capacity()) field.reserve(n + n / 8 + 16);
       field.resize(n, FieldArrays<D>::template zero<typename Field::value_type>());
     });
-    fluid_ = std::min(fluidCount, n);
+    setOwned(n, fluidCount);
   }
 
   // Drop the ghosts (the arrays keep their capacity).
@@ -255,7 +280,7 @@ struct Particles : FieldArrays<D> {
     const std::size_t total = size() + source.size();
     ghostSource_ = source;
     ghostShift_ = shift;
-    ghostFluid_ = fluidGhosts;
+    setGhosts(fluidGhosts, source.size() - fluidGhosts);
     this->forEachField([&](const FieldInfo& info, auto& field) {
       if ((allocated_ >> info.id) & 1u) growTo(field, total);
     });
@@ -437,11 +462,22 @@ struct Particles : FieldArrays<D> {
   void dropGhostRecords() {
     ghostSource_.clear();
     ghostShift_.clear();
-    ghostFluid_ = 0;
+    setGhosts(0, 0);
   }
 
-  std::size_t fluid_ = 0;
-  std::size_t ghostFluid_ = 0;              // ghosts of fluid particles
+  // The range table's entries: bound_[r] and bound_[r + 1] enclose range r.
+  static constexpr unsigned kFluidEnd = 1, kOwnedEnd = 2, kGhostFluidEnd = 3;
+  void setOwned(std::size_t n, std::size_t fluidCount) {
+    bound_[kFluidEnd] = std::min(fluidCount, n);
+    bound_[kOwnedEnd] = n;
+    setGhosts(0, 0);
+  }
+  void setGhosts(std::size_t fluidGhosts, std::size_t wallGhosts) {
+    bound_[kGhostFluidEnd] = bound_[kOwnedEnd] + fluidGhosts;
+    bound_[kParticleRanges] = bound_[kGhostFluidEnd] + wallGhosts;
+  }
+
+  std::array<std::size_t, kParticleRanges + 1> bound_{};  // the range table
   std::vector<std::uint32_t> ghostSource_;  // ghost g copies owned particle ghostSource_[g]
   std::vector<Vec<D>> ghostShift_;          // ... shifted by ghostShift_[g]
   std::vector<std::uint32_t> sourceShadow_, newIndex_;

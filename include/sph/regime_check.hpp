@@ -71,7 +71,7 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
     }
   };
   const Tally t = walkNeighbours<Tally>(
-      P, neighbours, WalkOver::kFluid, [&](std::size_t i, const NeighbourRow<D>& row, Tally& mine) {
+      P, neighbours, P.range(ParticleRange::kFluid), [&](std::size_t i, const NeighbourRow<D>& row, Tally& mine) {
         mine.v2 = std::max(mine.v2, P.v[i].squaredNorm());
         mine.rhoMax = std::max(mine.rhoMax, P.rho[i]);
         std::size_t count = 0;

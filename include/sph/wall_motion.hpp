@@ -40,7 +40,8 @@ struct SinusoidalWallMotion {
   // Move the wall particles from their place at time `from` to `to`.
   void advance(Particles<D>& P, Real from, Real to) const {
     const Vec<D> step = displacement(to) - displacement(from), u = velocity(to);
-    for (std::size_t i = P.fluidCount(); i < P.size(); ++i)
+    const IndexRange walls = P.range(ParticleRange::kWalls);
+    for (std::size_t i = walls.begin; i < walls.end; ++i)
       if (moves(P.id[i])) {
         P.x[i] += step;
         P.v[i] = u;

@@ -46,7 +46,7 @@ void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, con
   const Vec<D> movingBody = bodyAcceleration - moving.a;
   const bool withSoundSpeed = !P.c.empty();
   const bool withWallVelocity = !P.vWall.empty();  // only the laplacian and Morris viscosities read it
-  walkNeighbours(P, neighbours, WalkOver::kWalls, std::tie(kernel, eos),
+  walkNeighbours(P, neighbours, P.range(ParticleRange::kWalls), std::tie(kernel, eos),
                  [&](std::size_t w, const NeighbourRow<D>& row, const auto& k, const auto& e) {
                    Real sumW = 0, sumPW = 0;
                    Vec<D> sumRhoRW = Vec<D>::Zero(), sumVW = Vec<D>::Zero();

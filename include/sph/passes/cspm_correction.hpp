@@ -86,7 +86,7 @@ template <int D>
 unsigned CspmCorrectionPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
   const std::size_t n = P.fluidCount();
   const long fallbacks = walkNeighbours<long>(
-      P, neighbours, WalkOver::kFluid, kernel,
+      P, neighbours, P.range(ParticleRange::kFluid), kernel,
       [&](std::size_t i, const NeighbourRow<D>& row, long& fallback, const auto& k) {
         const std::optional<Mat<D>> L = cspmCorrection<D>(cspmMoment(row, P, k, walls.inSums));
         if (L) {

@@ -93,7 +93,7 @@ unsigned MlsDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   if (!reinitDue(ctx, every)) return 0;
   const std::size_t n = P.fluidCount();
   const long fallbacks = walkNeighbours<long>(
-      P, neighbours, WalkOver::kFluid, kernel,
+      P, neighbours, P.range(ParticleRange::kFluid), kernel,
       [&](std::size_t i, const NeighbourRow<D>& row, long& fallback, const auto& k) {
         const std::optional<Real> rho = mlsDensity(row, P, k, walls.inSums);
         if (rho) {

@@ -91,7 +91,7 @@ template <int D>
 unsigned ShepardDensityPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
   if (!reinitDue(ctx, every)) return 0;
   const std::size_t n = P.fluidCount();
-  walkNeighbours(P, neighbours, WalkOver::kFluid, kernel,
+  walkNeighbours(P, neighbours, P.range(ParticleRange::kFluid), kernel,
                  [&](std::size_t i, const NeighbourRow<D>& row, const auto& k) {
                    P.rhoReinit[i] = shepardDensity(row, P, k, walls.inSums);
                  });

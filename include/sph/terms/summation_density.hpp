@@ -22,7 +22,7 @@ template <int D, class Kernel, class Eos>
 void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel,
                              const Eos& eos, bool wallsInSums = true, bool clampNegative = false) {
   const bool withSoundSpeed = !P.c.empty();
-  walkNeighbours(P, neighbours, WalkOver::kFluid, std::tie(kernel, eos),
+  walkNeighbours(P, neighbours, P.range(ParticleRange::kFluid), std::tie(kernel, eos),
                  [&](std::size_t i, const NeighbourRow<D>& row, const auto& W, const auto& e) {
                    Real rho_i = P.m[i] * W.densityAtZero();
                    row.forEachSummed(wallsInSums, [&](std::uint32_t j, const Vec<D>& rij) {
