@@ -135,6 +135,11 @@ constexpr bool isPermuted(FieldRole r) { return r == FieldRole::kState || r == F
 // The fields of the list role (see the top): neither carried nor refreshed.
 constexpr FieldSet kListFields = fieldBit(kFieldXList);
 
+// Fields read only at their own particle, never at a neighbour: particle
+// shifting's sums, which the shift of the particle itself reads. Their
+// ghosts and halos are never refreshed (Particles::refreshGhosts).
+constexpr FieldSet kOwnParticleFields = fieldBits(kFieldShiftSum, kFieldShiftGrad);
+
 // Particle kinds (the kind field). Walls are stored after all fluid particles.
 enum ParticleKind : std::uint8_t { kFluid = 0, kWall = 1 };
 

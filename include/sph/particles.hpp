@@ -199,6 +199,10 @@ struct Particles : FieldArrays<D> {
   // A ghost source with this bit is a halo particle's receive slot.
   static constexpr std::uint32_t kRemoteSource = 0x80000000u;
   FieldSet allocated() const { return allocated_; }
+  // The fields a ghost or halo particle takes from its source: all
+  // allocated ones but the list's and those read only at their own
+  // particle (fields.hpp).
+  FieldSet refreshed() const { return allocated_ & ~kListFields & ~kOwnParticleFields; }
   bool has(FieldId f) const { return (allocated_ >> f) & 1u; }
 
   // Size the core fields for n particles (x, v, m, id are expected to be set
@@ -287,7 +291,7 @@ struct Particles : FieldArrays<D> {
     refreshLocalGhosts();
   }
 
-  // Copy the fields in `fields` (all allocated ones by default) of every
+  // Copy the fields in `fields` (all refreshed() ones by default) of every
   // ghost from its source; x becomes the source's x plus the shift. Then the
   // halo particles' from their ranks (the remote refresh, when one is set:
   // a collective call, made by every rank at the same point).
@@ -298,14 +302,14 @@ struct Particles : FieldArrays<D> {
 
   // The local ghosts only (periodic images of owned particles).
   void refreshLocalGhosts(FieldSet fields = ~FieldSet(0)) {
-    if (ghostSource_.empty() || (fields & allocated_ & ~kListFields) == 0) return;
+    if (ghostSource_.empty() || (fields & refreshed()) == 0) return;
 #pragma omp parallel if (ghostSource_.size() >= kMinParallelSize)
     refreshGhostsInTeam(fields);
   }
 
   // The halo particles only (collective; nothing without a remote refresh).
   void refreshRemoteGhosts(FieldSet fields = ~FieldSet(0)) {
-    if (remoteRefresh_ && (fields & allocated_ & ~kListFields) != 0) remoteRefresh_(remoteContext_, *this, fields);
+    if (remoteRefresh_ && (fields & refreshed()) != 0) remoteRefresh_(remoteContext_, *this, fields & refreshed());
   }
 
   // The decomposition's refresh of the halo particles' fields (nullptr: none).
@@ -322,7 +326,7 @@ struct Particles : FieldArrays<D> {
     const std::size_t ng = ghostSource_.size();
     if (ng == 0) return;
     const std::size_t owned = size();
-    fields &= allocated_ & ~kListFields;
+    fields &= refreshed();
     const std::uint32_t* src = ghostSource_.data();
     this->forEachField([&](const FieldInfo& info, auto& field) {
       if (((fields >> info.id) & 1u) == 0 || info.id == kFieldX) return;
