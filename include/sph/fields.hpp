@@ -76,8 +76,9 @@ constexpr FieldSet fieldBits(F... f) {
 // fields it may change (of the owned particles: a pass never writes a
 // ghost's own value, except by copying it from its source). A field a pass
 // writes without reading first is not in `reads`; one it adds to (a += ...)
-// is in both. The ghosts of `writes` are refreshed after the pass; a halo
-// exchange carries `reads`. tests/test_pass_fields.cpp checks both sets.
+// is in both. The ghosts and halos of `writes` are refreshed after the
+// pass (but for the fields read only at their own particle,
+// kOwnParticleFields below). tests/test_pass_fields.cpp checks both sets.
 struct FieldAccess {
   FieldSet reads = 0;
   FieldSet writes = 0;

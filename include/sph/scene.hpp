@@ -92,7 +92,10 @@ class Scene {
         listRadius_(model_.support() * (1 + neighbourSkin)),
         startTime_(startTime),
         time_(startTime) {
-    P_.resize(P_.x.size(), P_.fluidCount() ? P_.fluidCount() : SIZE_MAX);
+    // (Ghosts and halos of particles handed on from another scene are
+    // dropped; particles filled without a resize() are all owned.)
+    P_.clearGhosts();
+    P_.resize(P_.size() ? P_.size() : P_.x.size(), P_.fluidCount() ? P_.fluidCount() : SIZE_MAX);
     const bool density = (model_.needs() & fieldBit(kFieldDrho)) != 0;
     const FieldSet integratorNeeds = std::visit([&](const auto& i) { return i.needs(density); }, integrator_);
     // The state the integrator carries between steps (two-step leap-frog's

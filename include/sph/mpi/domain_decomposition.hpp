@@ -340,7 +340,7 @@ class DomainDecomposition {
     for (std::uint32_t& i : sendIndex_)
       if (i >= wallGhostsFrom) i += fluidHalos;
     P.addGhosts(allSource, allShift, allFluid);
-    refreshHalos(P, P.allocated() & ~kListFields);
+    refreshHalos(P, P.refreshed());
   }
 
   // Keep this rank's share of particles every rank holds alike (a run's
@@ -398,7 +398,7 @@ class DomainDecomposition {
     if (comm_.size == 1) return;
     if (!requests_.empty()) throw std::logic_error("DomainDecomposition: a halo refresh is already under way");
     Timed timed(&CommunicationTime::halo);
-    refreshFields_ = fields & P.allocated() & ~kListFields;  // a halo's build positions are its rank's own
+    refreshFields_ = fields & P.refreshed();  // (a halo's build positions are its rank's own)
     record_ = recordBytes(P, refreshFields_);
     if (record_ == 0) return;
     ++communicationTime().haloRefreshes;
