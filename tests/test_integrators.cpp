@@ -10,6 +10,8 @@
 #include "test_support.hpp"
 
 #include <cmath>
+#include <random>
+#include <string>
 
 using namespace sph;
 
@@ -190,6 +192,73 @@ BOOST_AUTO_TEST_CASE(rk4_is_fourth_order_with_resorting_particles) {
   BOOST_TEST(e2 > 0.0);
   const Real order = std::log2(e1 / e2);
   BOOST_TEST(std::abs(order - 4) < 0.3, "observed order " << order << " (e1 " << e1 << ", e2 " << e2 << ")");
+}
+
+// Every integrator writes only what it declares (integrator_support.hpp):
+// advance() the state it advances (x, v, and rho with continuity density)
+// and its own fields (needs()), finish() only finishes(); the scene
+// refreshes the ghosts and halos of those alone. Every allocated field gets
+// random values; the evaluations and the density-rate pass are stand-ins
+// that write new random rates (a, drho), as a model's passes would. A
+// field that changed outside the declaration fails, naming it.
+BOOST_AUTO_TEST_CASE(integrators_write_only_what_they_declare) {
+  for (const bool density : {true, false})
+    for (const Integrator<2>& chosen : {Integrator<2>{LeapFrog<2>{}}, Integrator<2>{SymplecticEuler<2>{}},
+                                        Integrator<2>{RungeKutta4<2>{}}, Integrator<2>{ExplicitEuler<2>{}},
+                                        Integrator<2>{TwoStepLeapFrog<2>{}}})
+      std::visit(
+        [&](auto integrator) {
+          using I = decltype(integrator);
+          const std::string what = std::string(I::name) + (density ? ", continuity" : ", summation");
+          const std::size_t n = 60, nFluid = 45;
+          std::mt19937 rng(11);
+          std::uniform_real_distribution<Real> u(0.5, 1.5);
+          Particles<2> P;
+          P.x.resize(n), P.v.resize(n), P.m.resize(n), P.id.resize(n);
+          for (std::size_t i = 0; i < n; ++i) P.id[i] = static_cast<std::int64_t>(i);
+          P.resize(n, nFluid);
+          P.allocate(I::needs(density) | fieldBit(kFieldVXsph) | (density ? fieldBit(kFieldDrho) : FieldSet(0)));
+          auto randomise = [&](FieldSet fields) {
+            P.forEachField([&](const FieldInfo& info, auto& field) {
+              if (((fields >> info.id) & 1u) == 0 || info.id == kFieldId || info.id == kFieldKind) return;
+              for (auto& value : field) {
+                using T = std::decay_t<decltype(value)>;
+                if constexpr (std::is_floating_point_v<T>) value = u(rng);
+                else if constexpr (std::is_class_v<T>) value = T::NullaryExpr([&] { return u(rng); });
+              }
+            });
+          };
+          randomise(P.allocated());
+          if constexpr (std::is_same_v<I, TwoStepLeapFrog<2>>) integrator.step = 3;  // past its Euler start
+          const FieldSet rates = fieldBits(kFieldA, kFieldDrho);
+          // The fields that changed from `before` to now, rates aside.
+          auto changed = [&](const Particles<2>& before) {
+            FieldSet out = 0;
+            FieldArrays<2>::zip(
+                [&](const FieldInfo& info, const auto& was, const auto& now) {
+                  if (((rates >> info.id) & 1u) == 0 && was != now) out |= fieldBit(info.id);
+                },
+                static_cast<const FieldArrays<2>&>(before), static_cast<const FieldArrays<2>&>(P));
+            return out;
+          };
+          auto names = [](FieldSet f) {
+            std::string s;
+            for (const FieldInfo& info : kFieldTable)
+              if ((f >> info.id) & 1u) s += std::string(" ") + info.name;
+            return s;
+          };
+          const Particles<2> start = P;
+          integrator.advance(P, 1e-3, [&] { randomise(rates & P.allocated()); }, NoConstraint{},
+                             [&] { randomise(fieldBit(kFieldDrho) & P.allocated()); });
+          const FieldSet advanced = changed(start), allowed = advancedState(density) | I::needs(density);
+          BOOST_TEST((advanced & ~allowed) == 0u, what << ": advance() wrote undeclared" << names(advanced & ~allowed));
+          BOOST_TEST((advanced & fieldBits(kFieldX, kFieldV)) == fieldBits(kFieldX, kFieldV), what);
+          const Particles<2> evaluated = P;
+          for (std::size_t i = 0; i < n; ++i) integrator.finish(P, i, 1e-3);
+          const FieldSet finished = changed(evaluated);
+          BOOST_TEST((finished & ~I::finishes()) == 0u, what << ": finish() wrote undeclared" << names(finished & ~I::finishes()));
+        },
+        chosen);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -23,6 +23,8 @@
 //   needs(density)  the integrator's own fields, carried between its
 //       stages or from step to step (allocated by the scene);
 //   finishes()  what finish() writes after the step's last evaluation.
+// (test integrators/integrators_write_only_what_they_declare checks that
+// each writes nothing else.)
 #pragma once
 
 #include "sph/particles.hpp"
