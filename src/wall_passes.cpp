@@ -23,8 +23,9 @@ unsigned AdamiWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
 // moves; a fixed wall's is 0).
 template <int D>
 unsigned DynamicWallVelocityPass<D>::run(Particles<D>& P, const NeighbourList<D>&, const StepContext&) const {
-  const auto first = static_cast<std::ptrdiff_t>(P.fluidCount()), end = static_cast<std::ptrdiff_t>(P.size());
-  std::copy(P.v.begin() + first, P.v.begin() + end, P.vWall.begin() + first);
+  const IndexRange walls = P.range(ParticleRange::kWalls);
+  std::copy(P.v.begin() + static_cast<std::ptrdiff_t>(walls.begin), P.v.begin() + static_cast<std::ptrdiff_t>(walls.end),
+            P.vWall.begin() + static_cast<std::ptrdiff_t>(walls.begin));
   return 0;
 }
 

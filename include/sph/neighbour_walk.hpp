@@ -113,7 +113,7 @@ void resolve(F&& f, const First& first, const Rest&... rest) {
 }  // namespace walk_detail
 
 // One parallel loop over the particles of `over` (a range of the
-// particles' table: P.range(ParticleRange::kFluid), P.owned(), ...):
+// particles' table: P.range(ParticleRange::kFluid), ...):
 //   f(i, row, choice...)          (Sums = NoSums)
 //   f(i, row, sums, choice...)    (otherwise: this thread's Sums; returned merged)
 // `choices`: a kernel, an EOS, ... or a std::tuple of them (std::tie);

@@ -56,9 +56,7 @@ constexpr unsigned kParticleRanges = 4;
 // Indices [begin, end).
 struct IndexRange {
   std::size_t begin = 0, end = 0;
-  std::size_t size() const { return end - begin; }
   bool empty() const { return begin == end; }
-  bool contains(std::size_t i) const { return i >= begin && i < end; }
 };
 
 // The arrays themselves, one per row of the field table.
@@ -181,8 +179,6 @@ struct Particles : FieldArrays<D> {
     return {bound_[k], bound_[k + 1]};
   }
   // Owned particles (fluid and walls); the ghosts follow them.
-  IndexRange owned() const { return {0, size()}; }
-  IndexRange ghosts() const { return {size(), totalSize()}; }
   std::size_t size() const { return bound_[kOwnedEnd]; }
   std::size_t totalSize() const { return bound_[kParticleRanges]; }
   // Fluid particles are [0, fluidCount()), walls [fluidCount(), size()).
@@ -220,7 +216,7 @@ struct Particles : FieldArrays<D> {
     setOwned(n, fluidCount);
     if (hasWalls()) {
       kind.resize(n);
-      for (std::size_t i = 0; i < n; ++i) kind[i] = i < this->fluidCount() ? kFluid : kWall;
+      markKinds();
       allocated_ |= fieldBit(kFieldKind);
     }
     allocated_ |= kCoreFields;
@@ -242,8 +238,7 @@ struct Particles : FieldArrays<D> {
     if (hasWalls()) wanted |= fieldBit(kFieldKind);
     const std::size_t n = size();
     this->sizeFields(wanted, n);
-    if (hasWalls())
-      for (std::size_t i = 0; i < n; ++i) kind[i] = i < fluidCount() ? kFluid : kWall;
+    if (hasWalls()) markKinds();
     allocated_ = wanted;
     setPermuted();
   }
@@ -309,7 +304,7 @@ struct Particles : FieldArrays<D> {
 
   // The halo particles only (collective; nothing without a remote refresh).
   void refreshRemoteGhosts(FieldSet fields = ~FieldSet(0)) {
-    if (remoteRefresh_ && (fields & refreshed()) != 0) remoteRefresh_(remoteContext_, *this, fields & refreshed());
+    if (remoteRefresh_ && (fields & refreshed()) != 0) remoteRefresh_(remoteContext_, *this, fields);
   }
 
   // The decomposition's refresh of the halo particles' fields (nullptr: none).
@@ -461,6 +456,11 @@ struct Particles : FieldArrays<D> {
   void growTo(V& array, std::size_t n) {
     if (n > array.capacity()) array.reserve(n + ghostSource_.size() / 4 + 16);
     array.resize(n);
+  }
+
+  // The kind of each owned particle, from the range table.
+  void markKinds() {
+    for (std::size_t i = 0; i < size(); ++i) kind[i] = i < fluidCount() ? kFluid : kWall;
   }
 
   void dropGhostRecords() {

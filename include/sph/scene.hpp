@@ -108,8 +108,6 @@ class Scene {
       if (((integratorNeeds >> info.id) & 1u) && info.role == FieldRole::kState && field.size() != n)
         carriedMissing_ |= fieldBit(info.id);
     });
-    advanced_ = advancedState(density);
-    finished_ = std::visit([](const auto& i) { return i.finishes(); }, integrator_);
     listRecorded_ = n > 0 && P_.xList.size() == n;
     P_.allocate(model_.needs() | integratorNeeds | (skin_ > 0 ? fieldBit(kFieldXList) : FieldSet(0)));
     if (auto* leapFrog = std::get_if<LeapFrog<D>>(&integrator_))
@@ -294,17 +292,18 @@ class Scene {
   bool listStillHolds() {
     const std::size_t n = P_.size();
     const Real half = skinDistance() / 2;
+    const FieldSet advanced = advancedState(!P_.drho.empty());
     Real worst2 = 0;
 #pragma omp parallel if (n >= kMinParallelSize)
     {
 #pragma omp for schedule(static) reduction(max : worst2)
       for (std::size_t i = 0; i < n; ++i) worst2 = std::max(worst2, Vec<D>(P_.x[i] - P_.xList[i]).squaredNorm());
-      P_.refreshGhostsInTeam(advanced_);
+      P_.refreshGhostsInTeam(advanced);
     }
     if (!decomposition_) return worst2 <= half * half;
     // Every rank rebuilds when one must (the sort migrates: collective).
     const bool holds = mpi::allMax(comm_, worst2) <= half * half;
-    if (holds) P_.refreshRemoteGhosts(advanced_);
+    if (holds) P_.refreshRemoteGhosts(advanced);
     return holds;
   }
 
@@ -389,8 +388,6 @@ class Scene {
   std::optional<WallMotionPass<D>> wallMotion_;
   long guardActions_ = 0;
   FieldSet carriedMissing_ = 0;  // integrator state the particles came without
-  FieldSet advanced_ = 0;        // the state the integrator advances (advancedState)
-  FieldSet finished_ = 0;        // ... and the fields its finish() writes
   bool listRecorded_ = false;     // the particles came with their list_build_position
   HashGrid<D> grid_;
   NeighbourList<D> neighbours_;
@@ -468,12 +465,12 @@ std::optional<StateFailure> Scene<D>::step(Real landOn) {
       [&](const auto& integrator) {
         context_.densityRateApart = std::decay_t<decltype(integrator)>::kDensityRateApart;
         integrator.advance(P_, choice.dt, [&] { evaluate(); }, constrain, [&] {
-          if (skin_ == 0) P_.refreshGhosts(advanced_);
+          if (skin_ == 0) P_.refreshGhosts(advancedState(!P_.drho.empty()));
           else prepareList();
           model_.densityRate(P_, neighbours_);
         });
         failure = finishStep([&](std::size_t i) { integrator.finish(P_, i, choice.dt); });
-        P_.refreshGhosts(finished_);
+        P_.refreshGhosts(std::decay_t<decltype(integrator)>::finishes());
       },
       integrator_);
   guardActions_ += guarded;
