@@ -3,6 +3,7 @@
 #include "sph/case_keys.hpp"
 #include "sph/io/number_format.hpp"
 #include "sph/methods.hpp"
+#include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/optional_terms.hpp"
 
 #include <cmath>

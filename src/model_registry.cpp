@@ -6,12 +6,15 @@
 
 #include "sph/models/seed_wcsph.hpp"
 #include "sph/models/wcsph.hpp"
+#include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/optional_terms.hpp"
 
 #include <cmath>
 #include <utility>
 
 namespace sph {
+
+EquationOfState makeEos(const ResolvedCase& c) { return methodRow(eosMethods(), "eos", c.eos).make(c); }
 
 template <int D>
 Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>> wallMotion) {

@@ -2,6 +2,7 @@
 
 #include "sph/io/vtp_io.hpp"
 #include "sph/methods.hpp"
+#include "sph/terms/equation_of_state.hpp"
 #include "sph/toy_star.hpp"
 #include "sph/wall_particles.hpp"
 

@@ -15,7 +15,8 @@ Model<D> makeSeedWcsph(const SeedWcsphParameters& prm) {
   info.name = "seed_wcsph";
   info.support = info.smoothingLength = prm.h;
   info.restDensity = prm.rho0;
-  info.eos = LinearEos{prm.k, prm.rho0};
+  const EquationOfState eos = LinearEos{prm.k, prm.rho0};
+  info.eos = std::make_shared<const EquationOfState>(eos);
   info.termNames = {"seed_density", "linear_eos", "seed_pressure"};
   // The viscous term's v_ij at step t is the half-step v^{t-1/2}: the seed's
   // leap-frog holds no other velocity (docs/methods/seed-model.md).
@@ -30,8 +31,8 @@ Model<D> makeSeedWcsph(const SeedWcsphParameters& prm) {
     forces.bodies.gravity = UniformGravity<D>::down(prm.g);
     info.termNames.push_back("gravity");
   }
-  info.bodies = forces.bodies;
-  return Model<D>(info, {makePass(SummationDensityPass<D>{kernels, info.eos}), makePass(forces)});
+  if (forces.bodies.gravity) info.bodies = std::make_shared<const BodyForces<D>>(forces.bodies);
+  return Model<D>(info, {makePass(SummationDensityPass<D>{kernels, eos}), makePass(forces)});
 }
 
 template Model<2> makeSeedWcsph<2>(const SeedWcsphParameters&);

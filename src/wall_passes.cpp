@@ -15,7 +15,7 @@ unsigned AdamiWallsPass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   const WallAcceleration<D> moving =
       motion ? WallAcceleration<D>{motion->firstId, motion->endId, motion->acceleration(ctx.time)}
              : WallAcceleration<D>{};
-  extrapolateToWalls(P, neighbours, kernel, eos, bodyAcceleration, noSlip, rho0, moving);
+  extrapolateToWalls(P, neighbours, kernel, *eos, bodyAcceleration, noSlip, rho0, moving);
   return term_bits::kAdamiWalls;
 }
 

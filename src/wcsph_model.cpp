@@ -28,8 +28,8 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   info.smoothingLength = std::visit([](const auto& k) { return k.h(); }, s.kernel);
   const Real h = info.smoothingLength;
   info.restDensity = s.restDensity;
-  info.eos = s.eos;
-  info.bodies = s.bodies;
+  info.eos = std::make_shared<const EquationOfState>(s.eos);
+  if (s.bodies.gravity || s.bodies.star) info.bodies = std::make_shared<const BodyForces<D>>(s.bodies);
   const bool continuity = s.density == DensityTreatment::kContinuity;
   const Real c0 = std::visit([&](const auto& e) { return e.soundSpeed(s.restDensity); }, s.eos);
   const Vec<D> g = s.bodies.gravity ? s.bodies.gravity->vector() : Vec<D>::Zero();
@@ -87,7 +87,7 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   PassList<D> passes;
   const BoundaryHooks<D>& boundary = s.boundary.template hooks<D>();
   // vWall is allocated only for a viscosity that reads it.
-  BoundaryBuild<D> build{s.kernel,     s.eos, s.restDensity, s.noSlip, readsWallVelocity(s.viscosity), s.spacing,
+  BoundaryBuild<D> build{s.kernel,     info.eos, s.restDensity, s.noSlip, readsWallVelocity(s.viscosity), s.spacing,
                          s.wallMotion, g,     c0,            h,        passes,                         info};
   if (continuity) {
     passes.push_back(makePass(EquationOfStatePass<D>{s.eos, walls, s.clampNegative, s.restDensity}));

@@ -9,6 +9,7 @@
 // - Tait with gamma = 7 by multiplication equals pow(); every EOS inverse
 //   inverts.
 #include "sph/terms/density_diffusion.hpp"
+#include "sph/terms/equation_of_state.hpp"
 #include "test_support.hpp"
 
 #include <random>

@@ -2,6 +2,7 @@
 // not constructed, their passes never run (executedTerms() reports the term
 // types the pair loop was instantiated with), and the arrays they need are
 // not allocated.
+#include "sph/terms/term_bits.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>

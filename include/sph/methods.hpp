@@ -2,7 +2,8 @@
 // method with its name, a one-line summary (with its source), the case keys
 // it uses, and the function that builds it. The factory (model_registry.hpp),
 // the validation of choices, the "unused key" warnings, --help and the tests
-// all read these tables; a method's name is written here and nowhere else.
+// all read these tables; a method's name is written here and nowhere else
+// (the EOS rows: src/eos_methods.cpp, compiled apart, declared below).
 //
 // A row whose builder returns nothing is a choice that builds no object
 // (viscosity "none"). A family may declare more of its rows (Traits): what
@@ -20,7 +21,7 @@
 #include "sph/integrators/integrators.hpp"
 #include "sph/kernels/kernels.hpp"
 #include "sph/models/wcsph_choices.hpp"
-#include "sph/terms/equation_of_state.hpp"
+#include "sph/terms/equation_of_state_fwd.hpp"
 
 #include <cmath>
 #include <optional>
@@ -149,38 +150,10 @@ const std::vector<Method<Kernel<D>, KernelAdvice>>& kernelMethods() {
   return m;
 }
 
-inline const std::vector<Method<EquationOfState>>& eosMethods() {
-  using key_range::above;
-  using key_range::within;
-  static const std::vector<Method<EquationOfState>> m = {
-      {"linear", "p = k (rho - rho0)", {"k", "rho0", "background_pressure"},
-       [](const CaseConfig& c) -> EquationOfState { return LinearEos{c.k, c.rho0, c.backgroundPressure}; },
-       {{"k", KeyGroup::kPhysics, &CaseConfig::k, "m^2/s^2 (linear EOS)",
-       "EOS stiffness: p = k (rho - rho0) (linear, seed), or p = k rho^(1+1/n) (polytropic)", above(0, 1e15),
-       nullptr, nullptr}}},
-      {"linear_clamped", "p = max(0, k (rho - rho0)): no tension (Monaghan 2000)", {"k", "rho0"},
-       [](const CaseConfig& c) -> EquationOfState { return ClampedLinearEos{c.k, c.rho0}; }},
-      {"tait", "p = rho0 c0^2/gamma ((rho/rho0)^gamma - 1) (Batchelor 1967; Monaghan 1994)",
-       {"c0", "gamma", "rho0", "background_pressure"},
-       [](const CaseConfig& c) -> EquationOfState { return TaitEos{c.rho0, c.c0, c.gamma, c.backgroundPressure}; },
-       {{"c0", KeyGroup::kPhysics, &CaseConfig::c0, "m/s", "Tait sound speed (eos tait; usually 10x the largest flow speed)",
-       within(0, 1e6), "none", nullptr},
-        {"background_pressure", KeyGroup::kPhysics, &CaseConfig::backgroundPressure, "Pa",
-       "Background pressure p_b added to p (eos linear and tait; for flows without a free surface, e.g. a periodic "
-       "box: keeps p > 0 against the tensile instability)",
-       within(0, 1e12), nullptr, nullptr},
-        {"gamma", KeyGroup::kPhysics, &CaseConfig::gamma, "", "Tait exponent (eos tait)", above(0, 20), nullptr, nullptr}},
-       [](const CaseConfig& c) {
-         if (!(c.c0 > 0) || !std::isfinite(c.c0))
-           throw CaseError("c0 = " + significant(c.c0) + " is out of range: it must be > 0");
-       }},
-      {"polytropic", "p = k rho^(1 + 1/n) (the toy star)", {"k", "polytropic_index"},
-       [](const CaseConfig& c) -> EquationOfState { return PolytropicEos{c.k, c.polytropicIndex}; },
-       {{"polytropic_index", KeyGroup::kPhysics, &CaseConfig::polytropicIndex, "", "n in p = k rho^(1 + 1/n) (eos polytropic)",
-       above(0, 100), nullptr, nullptr}}},
-  };
-  return m;
-}
+// The equations of state (terms/equation_of_state.hpp), registered in
+// src/eos_methods.cpp: compiled apart, so that touching an EOS rebuilds the
+// units that evaluate one, not every unit that reads the method tables.
+const std::vector<Method<EquationOfState>>& eosMethods();
 
 inline const std::vector<Method<ViscosityChoice, ViscosityAdvice>>& viscosityMethods() {
   using key_range::within;
@@ -497,7 +470,7 @@ Kernel<D> chosenKernel(const CaseConfig& c) {
 
 // The EOS row a (raw or resolved) composed case uses: its own or the default.
 inline const Method<EquationOfState>& chosenEos(const CaseConfig& c) {
-  return methodRow(eosMethods(), "eos", c.eos.empty() ? kDefaultEos : c.eos);
+  return sph::methodRow(eosMethods(), "eos", c.eos.empty() ? kDefaultEos : c.eos);  // qualified: ADL would complete the EOS types
 }
 
 // The viscosity row a (raw or resolved) composed case uses.

@@ -33,7 +33,8 @@ Kernel<D> makeProbeKernel(const ResolvedCase& c) {
   return WendlandC2<D>(c.h / 2);
 }
 
-inline EquationOfState makeEos(const ResolvedCase& c) { return methodRow(eosMethods(), "eos", c.eos).make(c); }
+// The case's equation of state (src/model_registry.cpp).
+EquationOfState makeEos(const ResolvedCase& c);
 
 inline ViscosityChoice makeViscosity(const ResolvedCase& c) {
   return methodRow(viscosityMethods(), "viscosity", c.viscosity).make(c);

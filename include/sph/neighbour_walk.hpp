@@ -89,10 +89,12 @@ struct NoSums {
 
 namespace walk_detail {
 
-template <class T>
-struct IsVariant : std::false_type {};
+// A std::variant, or a type derived from one (EquationOfState).
 template <class... T>
-struct IsVariant<std::variant<T...>> : std::true_type {};
+std::true_type variantBase(const std::variant<T...>*);
+std::false_type variantBase(const void*);
+template <class T>
+using IsVariant = decltype(variantBase(static_cast<const T*>(nullptr)));
 template <class T>
 struct IsTuple : std::false_type {};
 template <class... T>

@@ -76,7 +76,7 @@ struct WallConstraint {
 template <int D>
 struct BoundaryBuild {
   const Kernel<D>& kernel;
-  const EquationOfState& eos;
+  std::shared_ptr<const EquationOfState> eos;  // the model's
   Real restDensity;
   bool noSlip;   // dummy/dynamic walls in the viscous term (wall_slip)
   bool wallVelocity;  // the viscosity reads the velocity a wall shows the fluid, vWall (laplacian, morris)

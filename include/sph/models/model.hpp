@@ -23,16 +23,17 @@
 #pragma once
 
 #include "sph/models/pass.hpp"
-#include "sph/terms/body_forces.hpp"
-#include "sph/terms/equation_of_state.hpp"
+#include "sph/terms/equation_of_state_fwd.hpp"
 
-#include <algorithm>
-#include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace sph {
+
+template <int D>
+struct BodyForces;  // terms/body_forces.hpp
 
 template <int D>
 class Model {
@@ -43,8 +44,11 @@ class Model {
     Real smoothingLength = 0;    // h
     Real restDensity = 0;
     Real kinematicViscosity = 0; // for the viscous time-step limit (0: none)
-    EquationOfState eos = LinearEos{1, 1};
-    BodyForces<D> bodies;
+    // Held by pointer, so that this header needs neither type: the EOS and
+    // body-force headers rebuild the units that evaluate them, not every
+    // unit that sees a model (src/model.cpp evaluates them here).
+    std::shared_ptr<const EquationOfState> eos;  // required
+    std::shared_ptr<const BodyForces<D>> bodies;  // none: no body forces
     FieldSet needs = 0;          // optional fields its passes use
     std::vector<std::string> termNames;
     // The velocity the forces see between drift and kick (leap-frog): false,
@@ -107,8 +111,7 @@ class Model {
   Real smoothingLength() const { return info_.smoothingLength; }
   Real restDensity() const { return info_.restDensity; }
   Real kinematicViscosity() const { return info_.kinematicViscosity; }
-  const EquationOfState& eos() const { return info_.eos; }
-  const BodyForces<D>& bodies() const { return info_.bodies; }
+  const EquationOfState& eos() const { return *info_.eos; }
   FieldSet needs() const { return info_.needs; }
   const std::vector<std::string>& termNames() const { return info_.termNames; }
   bool forcesSeeHalfStepVelocity() const { return info_.forcesSeeHalfStepVelocity; }
@@ -124,7 +127,9 @@ class Model {
   // What the kernel corrections did so far (step_context.hpp).
   const CorrectionCounts& correctionCounts() const { return counts_; }
 
-  Real potentialEnergy(const Particles<D>& P) const { return info_.bodies.potential(P); }
+  // The potential energy of the conservative body forces (gravity, the
+  // star's attraction), for energy.csv.
+  Real potentialEnergy(const Particles<D>& P) const;
 
   // The regime check's references (regime_check.hpp): the EOS's sound speed
   // at rest density (the seed's p = k (rho - rho0): sqrt(k)), none for the
@@ -132,19 +137,13 @@ class Model {
   // window, for the Tait EOS of the water cases only (a linear EOS and the
   // seed's set a stiffness k and are compressible by design: the seed dam
   // break reaches 1.2 rho0).
-  Real regimeSoundSpeed() const {
-    if (std::holds_alternative<PolytropicEos>(info_.eos)) return 0;
-    return std::visit([&](const auto& eos) { return eos.soundSpeed(info_.restDensity); }, info_.eos);
-  }
-  Real regimeDensity() const { return std::holds_alternative<TaitEos>(info_.eos) ? info_.restDensity : 0; }
+  Real regimeSoundSpeed() const;
+  Real regimeDensity() const;
 
   // Largest sound speed over the particles (for the CFL time step). Every
   // EOS here has c monotonic in rho, so it is c at the lowest or the highest
   // density.
-  Real maxSoundSpeed(Real rhoMin, Real rhoMax) const {
-    return std::visit([&](const auto& eos) { return std::max(eos.soundSpeed(rhoMin), eos.soundSpeed(rhoMax)); },
-                      info_.eos);
-  }
+  Real maxSoundSpeed(Real rhoMin, Real rhoMax) const;
 
  private:
   // After a pass: the ghosts take from their sources the fields the pass
@@ -177,5 +176,8 @@ class Model {
   mutable bool evaluated_ = false;
   mutable CorrectionCounts counts_;
 };
+
+extern template class Model<2>;
+extern template class Model<3>;
 
 }  // namespace sph

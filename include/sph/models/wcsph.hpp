@@ -28,6 +28,8 @@
 #include "sph/kernels/kernels.hpp"
 #include "sph/models/model.hpp"
 #include "sph/models/wcsph_choices.hpp"
+#include "sph/terms/body_forces.hpp"
+#include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/optional_terms.hpp"
 #include "sph/wall_motion.hpp"
 

@@ -21,9 +21,10 @@
 #include "sph/kernels/kernels.hpp"
 #include "sph/particles.hpp"
 #include "sph/passes/step_context.hpp"
-#include "sph/terms/equation_of_state.hpp"
+#include "sph/terms/equation_of_state_fwd.hpp"
 #include "sph/wall_motion.hpp"
 
+#include <memory>
 #include <optional>
 
 namespace sph {
@@ -35,7 +36,7 @@ template <int D>
 struct AdamiWallsPass {
   static constexpr const char* name = "adami_walls";
   Kernel<D> kernel;
-  EquationOfState eos;
+  std::shared_ptr<const EquationOfState> eos;  // the model's (declared only here: its header rebuilds less)
   Vec<D> bodyAcceleration;  // g (fixed walls: a_w = 0)
   bool noSlip = true;
   Real rho0 = 1000;

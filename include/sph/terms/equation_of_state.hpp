@@ -25,6 +25,7 @@
 #pragma once
 
 #include "sph/particles.hpp"
+#include "sph/terms/equation_of_state_fwd.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -86,7 +87,12 @@ struct PolytropicEos {
   Real density(Real p) const { return std::pow(std::max(p, Real(0)) / k, n / (n + 1)); }
 };
 
-using EquationOfState = std::variant<LinearEos, ClampedLinearEos, TaitEos, PolytropicEos>;
+// The choice of one. A struct, not an alias of the variant, so that a
+// header can declare it (equation_of_state_fwd.hpp): a call that looks up
+// names by argument would complete a declared variant's alternatives.
+struct EquationOfState : std::variant<LinearEos, ClampedLinearEos, TaitEos, PolytropicEos> {
+  using variant::variant;
+};
 
 // p_i = p(rho_i), and c_i = c(rho_i) when the particles carry a sound
 // speed, for particles [0, n); with `clampNegative` p_i = max(p_i, 0).
