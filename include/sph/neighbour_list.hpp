@@ -175,6 +175,18 @@ class NeighbourList {
     for (std::uint32_t k = r.split; k < r.end; ++k) g(r.list[k]);
   }
 
+  // The neighbours of particle i as one index array: the fluid ones in
+  // [row.begin, row.walls), the wall ones in [row.walls, row.end) (none
+  // without walls). For a loop that takes them in blocks
+  // (passes/density_rate_blocks.hpp); the same visit as forEachByKind.
+  struct Row {
+    const std::uint32_t *begin, *walls, *end;
+  };
+  [[gnu::always_inline]] Row row(std::size_t i) const {
+    const Run r = run(i);
+    return {r.list + r.begin, r.list + r.split, r.list + r.end};
+  }
+
   // Store the list (false, the default) or walk the cells at every visit
   // (true); takes effect at the next build.
   void setCellWalk(bool on) {

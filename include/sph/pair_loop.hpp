@@ -1,5 +1,8 @@
 // The one pair loop (HOOMD-style evaluators, fused as in DualSPHysics'
-// fluid loop): the only place that forms r_ij, r, q and grad W for a pair.
+// fluid loop): the only place that forms r_ij, r, q and grad W for a pair
+// (but for the density-rate walk in SIMD blocks, passes/
+// density_rate_blocks.hpp, which repeats these operations lane by lane: a
+// test holds its rates equal to this loop's bit for bit).
 //
 // For every fluid particle i it visits the fluid neighbours with the
 // evaluators of `FluidPairs` and the wall neighbours with those of

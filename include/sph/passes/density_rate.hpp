@@ -11,18 +11,23 @@
 // (continuity_density.hpp), so no correction is formed here. One pair loop
 // per kernel. The optional terms that write the density rate only
 // (terms/optional_terms.hpp) follow the diffusion, in their list order.
+// In 2D with Wendland C2 and no such term, on a build for AVX2 or AVX-512,
+// the fluid pairs go in SIMD blocks instead (density_rate_blocks.hpp: the
+// same rates bit for bit).
 #pragma once
 
 #include "sph/boundaries/wall_sums.hpp"
 #include "sph/kernels/kernels.hpp"
 #include "sph/pair_loop.hpp"
 #include "sph/passes/seed_forces.hpp"
+#include "sph/passes/density_rate_blocks.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/continuity_density.hpp"
 #include "sph/terms/density_diffusion.hpp"
 #include "sph/terms/optional_terms.hpp"
 
 #include <tuple>
+#include <type_traits>
 #include <variant>
 
 namespace sph {
@@ -55,6 +60,11 @@ unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighb
   const unsigned bits = std::visit(
       [&](const auto& k) {
         const ContinuityDensity rate{true};
+        using K = std::decay_t<decltype(k)>;
+        if constexpr (kRateBlocksPay && D == 2 && std::is_same_v<K, WendlandC2<2>>) {
+          if (!anyRateTermActive(terms))
+            return densityRateInBlocks(P, neighbours, k, diffusionHere, walls, prologue);
+        }
         return runPairLoop(P, neighbours, k, k.support(),
                            std::tuple_cat(std::make_tuple(rate, diffusionHere), densityRateTermEvaluators(terms, k)),
                            std::make_tuple(rate),

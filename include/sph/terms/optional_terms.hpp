@@ -184,6 +184,12 @@ inline FieldSet rateTermReads(const OptionalTerms& terms) {
   std::apply([&](const auto&... t) { ((reads |= rateOnlyTerm(t) && t.active() ? t.reads() : 0u), ...); }, terms);
   return reads;
 }
+// Whether an active optional term writes the density rate only.
+inline bool anyRateTermActive(const OptionalTerms& terms) {
+  bool any = false;
+  std::apply([&](const auto&... t) { ((any = any || (rateOnlyTerm(t) && t.active())), ...); }, terms);
+  return any;
+}
 template <class F>
 void forEachActiveTermName(const OptionalTerms& terms, F&& f) {
   std::apply([&](const auto&... t) { ((t.active() ? f(t.name) : void()), ...); }, terms);
