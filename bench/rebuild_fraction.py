@@ -39,8 +39,11 @@ def headers_of(entry):
         if a == "-c" or a.startswith("-o"):
             continue
         keep.append(a)
-    out = subprocess.run([args[0], *keep, "-MM"], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
-                         cwd=entry["directory"]).stdout
+    run = subprocess.run([args[0], *keep, "-MM"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         cwd=entry["directory"])
+    if run.returncode != 0:
+        sys.exit(f"rebuild_fraction: the compiler could not list the headers of {entry['file']}:\n{run.stderr}")
+    out = run.stdout
     return {os.path.realpath(os.path.join(entry["directory"], p)) for p in out.replace("\\\n", " ").split()[1:]}
 
 

@@ -17,8 +17,8 @@
 
 #include "sph/case_file.hpp"
 #include "sph/model_registry.hpp"
-#include "sph/terms/equation_of_state.hpp"
 #include "sph/run_case.hpp"
+#include "sph/terms/equation_of_state.hpp"
 #include "sph/time_step.hpp"
 #include "sph/wall_particles.hpp"
 

@@ -197,14 +197,7 @@ BOOST_AUTO_TEST_CASE(tait_by_multiplication_equals_pow_and_every_eos_inverts) {
 // AVX2 or AVX-512; the function is compared here on every build.)
 BOOST_AUTO_TEST_CASE(density_rate_blocks_equal_the_scalar_loop_bit_for_bit) {
   for (const char* boundary : {"dummy", "dynamic"}) {
-    CaseConfig c = test::bareWcsph(2);
-    c.kernel = "wendland_c2", c.spacing = 0.01, c.h = 0.015;
-    c.eos = "tait", c.c0 = 20, c.rho0 = 1000, c.g = 9.81;
-    c.density = "continuity", c.delta = 0.1;
-    c.viscosity = "monaghan", c.alpha = 0.02, c.beta = 0;
-    c.walls = true, c.boundary = boundary;
-    c.domainMin = {0, 0}, c.domainMax = {0.4, 0.3}, c.blockMin = {0, 0}, c.blockMax = {0.1, 0.2};
-    c.dt = 1e-4, c.neighbourSkin = 0.3;
+    const CaseConfig c = test::waterColumn(boundary, 0.3);
     Scene<2> s = test::sceneOf<2>(c);
     for (int n = 0; n < 60; ++n) BOOST_REQUIRE(!s.step());
     const Particles<2>& P = s.particles();

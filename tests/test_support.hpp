@@ -79,6 +79,23 @@ inline CaseConfig bareWcsph(int dimension) {
   return c;
 }
 
+// A water column 0.1 x 0.2 m in a tank 0.4 x 0.3 m (2D, dx 0.01, Wendland
+// C2 with h = 1.5 dx, Tait c0 = 20, continuity with delta-SPH 0.1,
+// Monaghan 0.02, gravity, leap-frog, dt 1e-4) with wall particles of
+// `boundary` and a neighbour-list skin `skin`: the water physics of the
+// dam break on a few hundred particles.
+inline CaseConfig waterColumn(const std::string& boundary, Real skin) {
+  CaseConfig c = bareWcsph(2);
+  c.kernel = "wendland_c2", c.spacing = 0.01, c.h = 0.015;
+  c.eos = "tait", c.c0 = 20, c.rho0 = 1000, c.g = 9.81;
+  c.density = "continuity", c.delta = 0.1;
+  c.viscosity = "monaghan", c.alpha = 0.02, c.beta = 0;
+  c.walls = true, c.boundary = boundary;
+  c.domainMin = {0, 0}, c.domainMax = {0.4, 0.3}, c.blockMin = {0, 0}, c.blockMax = {0.1, 0.2};
+  c.dt = 1e-4, c.neighbourSkin = skin;
+  return c;
+}
+
 // The scene of a case, built and initialised as `sph run` does.
 template <int D>
 Scene<D> sceneOf(const CaseConfig& given) {

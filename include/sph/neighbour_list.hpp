@@ -178,7 +178,7 @@ class NeighbourList {
   // The neighbours of particle i as one index array: the fluid ones in
   // [row.begin, row.walls), the wall ones in [row.walls, row.end) (none
   // without walls). For a loop that takes them in blocks
-  // (passes/density_rate_blocks.hpp); the same visit as forEachByKind.
+  // (pair_loop_blocks.hpp); the same visit as forEachByKind.
   struct Row {
     const std::uint32_t *begin, *walls, *end;
   };

@@ -1,8 +1,9 @@
 // The one pair loop (HOOMD-style evaluators, fused as in DualSPHysics'
 // fluid loop): the only place that forms r_ij, r, q and grad W for a pair
-// (but for the density-rate walk in SIMD blocks, passes/
-// density_rate_blocks.hpp, which repeats these operations lane by lane: a
-// test holds its rates equal to this loop's bit for bit).
+// (but for the SIMD blocks of pair_loop_blocks.hpp, whose row functions,
+// passes/density_rate_blocks.hpp and passes/force_blocks.hpp, repeat these
+// operations lane by lane: tests hold their rates equal to this loop's bit
+// for bit).
 //
 // For every fluid particle i it visits the fluid neighbours with the
 // evaluators of `FluidPairs` and the wall neighbours with those of

@@ -26,6 +26,7 @@
 #include "sph/terms/equation_of_state_fwd.hpp"
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,7 +66,9 @@ class Model {
       : info_(std::move(info)),
         passes_(std::move(passes)),
         afterStep_(std::move(afterStep)),
-        densityRate_(std::move(densityRate)) {}
+        densityRate_(std::move(densityRate)) {
+    if (!info_.eos) throw std::invalid_argument("Model: a model needs an equation of state (Info::eos)");
+  }
 
   // rho (or its rate), p, a and the other rates at the current state. The
   // neighbour list must have been built on these positions.

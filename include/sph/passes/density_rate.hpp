@@ -61,8 +61,8 @@ unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighb
       [&](const auto& k) {
         const ContinuityDensity rate{true};
         using K = std::decay_t<decltype(k)>;
-        if constexpr (kRateBlocksPay && D == 2 && std::is_same_v<K, WendlandC2<2>>) {
-          if (!anyRateTermActive(terms))
+        if constexpr (kPairBlocksPay && D == 2 && std::is_same_v<K, WendlandC2<2>>) {
+          if (pairBlocksAllowed() && !anyRateTermActive(terms) && (diffusionHere.coefficient == 0 || diffusionHere.volume))
             return densityRateInBlocks(P, neighbours, k, diffusionHere, walls, prologue);
         }
         return runPairLoop(P, neighbours, k, k.support(),

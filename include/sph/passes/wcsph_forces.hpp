@@ -25,6 +25,10 @@
 // damping, ...) come from their list: the pair terms' evaluators after the
 // pressure term in the fluid-fluid pack, the per-particle terms in the
 // epilogue; an inactive one is one predictable branch, not an instantiation.
+// The water physics of 2D (Wendland C2, symmetric pressure and Monaghan's
+// viscosity, the density rate computed apart, nothing else in the pack)
+// takes its fluid-fluid pairs in SIMD blocks on a build for AVX2 or
+// AVX-512 (force_blocks.hpp: the same accelerations bit for bit).
 #pragma once
 
 #include "sph/boundaries/wall_sums.hpp"
@@ -32,6 +36,7 @@
 #include "sph/models/wcsph_choices.hpp"
 #include "sph/pair_loop.hpp"
 #include "sph/passes/cspm_correction.hpp"
+#include "sph/passes/force_blocks.hpp"
 #include "sph/passes/seed_forces.hpp"
 #include "sph/passes/step_context.hpp"
 #include "sph/terms/body_forces.hpp"
@@ -171,13 +176,29 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
             std::tuple_cat(std::make_tuple(rate, pressure), viscosityPack<K, true>(k, visc, wallViscosity),
                            std::make_tuple(ShiftingSums<K, true>{k, invWdx, shifting.rho0, shifting.on}));
         constexpr unsigned writes = PackTraits<std::decay_t<decltype(fluidPairs)>>::writes;
+        const ForceEpilogue<D, writes, ParticleTermForces<D>> epilogue{
+            bodies, xsphEpsilon, rateHere, surfaceTension ? &*surfaceTension : nullptr, ParticleTermForces<D>{terms},
+            shifting.on, k.W(0)};
+        const PairLoopParts parts{walls.inSums, wallRatesHere};
+        // The water physics of 2D in SIMD blocks (force_blocks.hpp: the
+        // same accelerations bit for bit), where they pay.
+        using V = std::decay_t<decltype(visc)>;
+        if constexpr (kPairBlocksPay && D == 2 && std::is_same_v<K, WendlandC2<2>> &&
+                      std::is_same_v<V, MonaghanViscosityChoice>) {
+          if (pairBlocksAllowed() && !rateHere && !cspm && xsphEpsilon == 0 && !shifting.on && !anyPairTermActive(terms) &&
+              prologue.pOverRho2) {
+            runPairLoopInBlocks(P, neighbours, k,
+                                PressureViscosityRow<K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta},
+                                wallNeighbourPairs, std::make_tuple(ContinuityDensity{wallRatesHere}), epilogue,
+                                DensityRateEpilogue<D>{}, parts, prologue);
+            const bool wallParticles = parts.wallParticles && P.hasWalls();
+            return packBits(fluidPairs) | (P.hasWalls() && parts.wallPairs ? packBits(wallNeighbourPairs) : 0u) |
+                   (wallParticles ? packBits(std::make_tuple(ContinuityDensity{wallRatesHere})) : 0u);
+          }
+        }
         return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
-                           std::make_tuple(ContinuityDensity{wallRatesHere}),
-                           ForceEpilogue<D, writes, ParticleTermForces<D>>{
-                               bodies, xsphEpsilon, rateHere, surfaceTension ? &*surfaceTension : nullptr,
-                               ParticleTermForces<D>{terms}, shifting.on, k.W(0)},
-                           DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, wallRatesHere}, correct,
-                           prologue);
+                           std::make_tuple(ContinuityDensity{wallRatesHere}), epilogue, DensityRateEpilogue<D>{},
+                           parts, correct, prologue);
       },
       kernel, loopViscosity(viscosity));
   const unsigned wallBits = walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;

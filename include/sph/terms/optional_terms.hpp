@@ -190,6 +190,13 @@ inline bool anyRateTermActive(const OptionalTerms& terms) {
   std::apply([&](const auto&... t) { ((any = any || (rateOnlyTerm(t) && t.active())), ...); }, terms);
   return any;
 }
+// Whether an active optional term is a pair term.
+inline bool anyPairTermActive(const OptionalTerms& terms) {
+  bool any = false;
+  std::apply([&](const auto&... t) { ((any = any || (std::decay_t<decltype(t)>::kPerPair && t.active())), ...); },
+             terms);
+  return any;
+}
 template <class F>
 void forEachActiveTermName(const OptionalTerms& terms, F&& f) {
   std::apply([&](const auto&... t) { ((t.active() ? f(t.name) : void()), ...); }, terms);
