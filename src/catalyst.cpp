@@ -69,13 +69,25 @@ void Catalyst::loadPlugin() {
 }
 
 // On several ranks: every rank throws when any rank failed (this one's
-// message, or "on another MPI rank"), so that none goes on alone into the
-// collective calls that follow (MPI_Comm_dup, ParaView's start). A rank
-// that started Catalyst and throws here leaves it unfinished: its finish
-// would wait for the ranks that have none.
+// message, or the first failing rank's, named: only rank 0 prints), so that
+// none goes on alone into the collective calls that follow (MPI_Comm_dup,
+// ParaView's start). A rank that started Catalyst and throws here leaves it
+// unfinished: its finish would wait for the ranks that have none.
 void Catalyst::agree(const std::string& failure) const {
   if (mpi::allMax(ranks_, failure.empty() ? 0 : 1) == 0) return;
-  throw CaseError(failure.empty() ? "catalyst: script " + script_ + " failed to load on another MPI rank" : failure);
+  // (Every rank takes part in the gathers before any throws.)
+  const std::vector<char> mine(failure.begin(), failure.end());
+  const std::vector<int> lengths = mpi::allGather(ranks_, std::vector<int>{static_cast<int>(mine.size())});
+  const std::vector<char> all = mpi::allGather(ranks_, mine);
+  if (!failure.empty()) throw CaseError(failure);
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < lengths.size(); ++r) {
+    if (lengths[r] > 0)
+      throw CaseError(std::string(all.begin() + static_cast<long>(at), all.begin() + static_cast<long>(at + lengths[r])) +
+                      " (on MPI rank " + std::to_string(r) + ")");
+    at += static_cast<std::size_t>(lengths[r]);
+  }
+  throw CaseError("catalyst: script " + script_ + " failed to load on another MPI rank");
 }
 
 Catalyst::Catalyst(const std::string& script, const std::string& runFolder, const std::string& runName,
