@@ -108,4 +108,12 @@ Scene<D> sceneOf(const CaseConfig& given) {
   return s;
 }
 
+// The scene of a case after `steps` steps (none may fail).
+template <int D>
+Scene<D> settled(const CaseConfig& c, int steps) {
+  Scene<D> s = sceneOf<D>(c);
+  for (int n = 0; n < steps; ++n) BOOST_REQUIRE(!s.step());
+  return s;
+}
+
 }  // namespace sph::test

@@ -1,17 +1,13 @@
-// The pair loop with the fluid particles' fluid neighbours taken in SIMD
-// blocks (passes/density_rate_blocks.hpp, passes/force_blocks.hpp): what
-// runPairLoop (pair_loop.hpp) does, in the same parallel region and order,
-// but for the fluid-fluid pairs of each row, which a row function adds:
-//   fluidRow(i, begin, end, rates)   the fluid neighbours [begin, end) of
-//                                    fluid particle i, added to its rates
-// It forms each pair in a lane with the scalar loop's operations, in the
+// What the row functions that take a fluid particle's fluid neighbours in
+// SIMD blocks share (passes/density_rate_blocks.hpp, passes/force_blocks.hpp;
+// runPairLoop's fluidRow, pair_loop.hpp). A row function forms each pair in a lane with the scalar loop's operations, in the
 // same order (no contracted multiply-add: the build's -ffp-contract=off),
 // and adds the lanes' results to the sums one pair after the other in the
 // list's order, so the rates are the scalar loop's bit for bit (tests:
 // continuity/density_rate_blocks_..., wcsph_terms/force_blocks_...). The
-// wall neighbours, the wall particles' own rates and the epilogues are the
-// scalar loop's own. A row function skips the pairs in the list's skin as
-// the scalar loop does.
+// wall neighbours, the wall particles' own rates and the epilogues stay
+// runPairLoop's. A row function skips the pairs in the list's skin as the
+// scalar loop does.
 #pragma once
 
 #include "sph/neighbour_list.hpp"
@@ -71,54 +67,6 @@ template <class Kernel>
   q.g0 = w * q.r0;
   q.g1 = w * q.r1;
   return q;
-}
-
-template <int D, class Kernel, class FluidRow, class WallPairs, class WallParticlePairs, class Epilogue,
-          class WallEpilogue, class Prologue>
-void runPairLoopInBlocks(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel,
-                         const FluidRow& fluidRow, const WallPairs& wallPairs,
-                         const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
-                         const WallEpilogue& wallEpilogue, PairLoopParts parts, const Prologue& prologue) {
-  const std::size_t n = P.size(), nFluid = P.fluidCount();
-  const Real support = kernel.support(), invSupport = 1 / support, support2 = support * support;
-  const bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0 && parts.wallParticles && P.hasWalls();
-  const bool walls = P.hasWalls() && parts.wallPairs;
-#pragma omp parallel if (n >= kMinParallelSize)
-  {
-    if (prologue.active()) {
-      const std::size_t total = P.totalSize();
-#pragma omp for schedule(static)
-      for (std::size_t i = 0; i < total; ++i) prologue(i, P);
-    }
-#pragma omp for schedule(static) nowait
-    for (std::size_t i = 0; i < nFluid; ++i) {
-      const auto row = neighbours.row(i);
-      const auto ii = static_cast<std::uint32_t>(i);
-      PairRates<D> r;
-      fluidRow(ii, row.begin, walls ? row.walls : row.end, r);
-      if (walls) {
-        const Vec<D> xi = P.x[i];
-        for (const std::uint32_t* q = row.walls; q != row.end; ++q) {
-          if (!(Vec<D>(xi - P.x[*q]).squaredNorm() < support2)) continue;
-          addPair(wallPairs, makePair(ii, *q, xi, P.x[*q], kernel, invSupport), P, r);
-        }
-      }
-      epilogue(i, P, r);
-    }
-    if (wallParticles) {
-#pragma omp for schedule(static) nowait
-      for (std::size_t i = nFluid; i < n; ++i) {
-        PairRates<D> r;
-        const Vec<D> xi = P.x[i];
-        const auto ii = static_cast<std::uint32_t>(i);
-        neighbours.forEach(i, [&](std::uint32_t j) {
-          if (!(Vec<D>(xi - P.x[j]).squaredNorm() < support2)) return;
-          addPair(wallParticlePairs, makePair(ii, j, xi, P.x[j], kernel, invSupport), P, r);
-        });
-        wallEpilogue(i, P, r);
-      }
-    }
-  }
 }
 
 }  // namespace sph

@@ -60,17 +60,21 @@ unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighb
   const unsigned bits = std::visit(
       [&](const auto& k) {
         const ContinuityDensity rate{true};
+        auto loop = [&](const auto& fluidRow) {
+          return runPairLoop(P, neighbours, k, k.support(),
+                             std::tuple_cat(std::make_tuple(rate, diffusionHere), densityRateTermEvaluators(terms, k)),
+                             std::make_tuple(rate), std::make_tuple(ContinuityDensity{walls.densityRates}),
+                             DensityRateEpilogue<D>{}, DensityRateEpilogue<D>{},
+                             PairLoopParts{walls.inSums, walls.densityRates}, NoGradientCorrection{}, prologue,
+                             fluidRow);
+        };
         using K = std::decay_t<decltype(k)>;
         if constexpr (kPairBlocksPay && D == 2 && std::is_same_v<K, WendlandC2<2>>) {
-          if (pairBlocksAllowed() && !anyRateTermActive(terms) && (diffusionHere.coefficient == 0 || diffusionHere.volume))
-            return densityRateInBlocks(P, neighbours, k, diffusionHere, walls, prologue);
+          if (pairBlocksAllowed() && !anyRateTermActive(terms) &&
+              (diffusionHere.coefficient == 0 || diffusionHere.volume))
+            return loop(DensityRateRow<K>{P, k, diffusionHere});
         }
-        return runPairLoop(P, neighbours, k, k.support(),
-                           std::tuple_cat(std::make_tuple(rate, diffusionHere), densityRateTermEvaluators(terms, k)),
-                           std::make_tuple(rate),
-                           std::make_tuple(ContinuityDensity{walls.densityRates}), DensityRateEpilogue<D>{},
-                           DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, walls.densityRates},
-                           NoGradientCorrection{}, prologue);
+        return loop(PairByPair{});
       },
       kernel);
   return bits | (walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u);

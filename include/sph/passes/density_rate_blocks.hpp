@@ -13,10 +13,7 @@
 // V, the square root, the kernel, the diffusion's division).
 #pragma once
 
-#include "sph/boundaries/wall_sums.hpp"
 #include "sph/pair_loop_blocks.hpp"
-#include "sph/passes/seed_forces.hpp"
-#include "sph/terms/continuity_density.hpp"
 #include "sph/terms/density_diffusion.hpp"
 
 #include <cmath>
@@ -72,21 +69,5 @@ struct DensityRateRow {
     rates.drho = drho;
   }
 };
-
-// The density-rate pass of 2D with these rows (density_rate.hpp: its packs
-// in the scalar loop). Returns the term bits of the packs it ran.
-template <class Kernel>
-unsigned densityRateInBlocks(Particles<2>& P, const NeighbourList<2>& neighbours, const Kernel& kernel,
-                             const DensityDiffusion<2>& diffusion, WallSums walls,
-                             const ParticlePrologue<2>& prologue) {
-  const ContinuityDensity rate{true}, wallRate{walls.densityRates};
-  const PairLoopParts parts{walls.inSums, walls.densityRates};
-  runPairLoopInBlocks(P, neighbours, kernel, DensityRateRow<Kernel>{P, kernel, diffusion}, std::make_tuple(rate),
-                      std::make_tuple(wallRate), DensityRateEpilogue<2>{}, DensityRateEpilogue<2>{}, parts, prologue);
-  unsigned bits = packBits(std::make_tuple(rate, diffusion));
-  if (P.hasWalls() && walls.inSums) bits |= packBits(std::make_tuple(rate));
-  if (P.hasWalls() && walls.densityRates) bits |= packBits(std::make_tuple(wallRate));
-  return bits;
-}
 
 }  // namespace sph

@@ -179,26 +179,21 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         const ForceEpilogue<D, writes, ParticleTermForces<D>> epilogue{
             bodies, xsphEpsilon, rateHere, surfaceTension ? &*surfaceTension : nullptr, ParticleTermForces<D>{terms},
             shifting.on, k.W(0)};
-        const PairLoopParts parts{walls.inSums, wallRatesHere};
+        auto loop = [&](const auto& fluidRow) {
+          return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
+                             std::make_tuple(ContinuityDensity{wallRatesHere}), epilogue, DensityRateEpilogue<D>{},
+                             PairLoopParts{walls.inSums, wallRatesHere}, correct, prologue, fluidRow);
+        };
         // The water physics of 2D in SIMD blocks (force_blocks.hpp: the
         // same accelerations bit for bit), where they pay.
         using V = std::decay_t<decltype(visc)>;
         if constexpr (kPairBlocksPay && D == 2 && std::is_same_v<K, WendlandC2<2>> &&
                       std::is_same_v<V, MonaghanViscosityChoice>) {
-          if (pairBlocksAllowed() && !rateHere && !cspm && xsphEpsilon == 0 && !shifting.on && !anyPairTermActive(terms) &&
-              prologue.pOverRho2) {
-            runPairLoopInBlocks(P, neighbours, k,
-                                PressureViscosityRow<K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta},
-                                wallNeighbourPairs, std::make_tuple(ContinuityDensity{wallRatesHere}), epilogue,
-                                DensityRateEpilogue<D>{}, parts, prologue);
-            const bool wallParticles = parts.wallParticles && P.hasWalls();
-            return packBits(fluidPairs) | (P.hasWalls() && parts.wallPairs ? packBits(wallNeighbourPairs) : 0u) |
-                   (wallParticles ? packBits(std::make_tuple(ContinuityDensity{wallRatesHere})) : 0u);
-          }
+          if (pairBlocksAllowed() && !rateHere && !cspm && xsphEpsilon == 0 && !shifting.on &&
+              !anyPairTermActive(terms) && prologue.pOverRho2)
+            return loop(PressureViscosityRow<K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta});
         }
-        return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
-                           std::make_tuple(ContinuityDensity{wallRatesHere}), epilogue, DensityRateEpilogue<D>{},
-                           parts, correct, prologue);
+        return loop(PairByPair{});
       },
       kernel, loopViscosity(viscosity));
   const unsigned wallBits = walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
