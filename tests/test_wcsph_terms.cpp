@@ -7,10 +7,12 @@
 //   viscosity damps relative motion for every kernel;
 // - the adaptive time step names the criterion that set it;
 // - the force walk in SIMD blocks (passes/force_blocks.hpp) gives the
-//   scalar pair loop's accelerations bit for bit.
+//   scalar pair loop's accelerations up to the order of the sum, and
+//   whole runs with blocks stay within round-off of the scalar runs.
 #include "sph/passes/force_blocks.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
 #include "sph/terms/symmetric_pressure.hpp"
+#include "reordered_sum_bound.hpp"
 #include "test_support.hpp"
 
 #include <fstream>
@@ -187,11 +189,14 @@ BOOST_AUTO_TEST_CASE(adaptive_time_step_names_its_criterion) {
 // with the force pass's packs: symmetric pressure, then Monaghan's
 // viscosity), on a dam-break column after 60 steps (disordered, the list's
 // skin holding pairs beyond the support, approaching and receding pairs),
-// with dummy and dynamic walls, with beta 0 and 1. Tolerance 0: the blocks
-// compute each pair with the same operations and add the pairs in the
-// list's order. (The pass uses the blocks only where they pay, with AVX2 or
+// with dummy and dynamic walls, with beta 0 and 1. Tolerance: the blocks
+// add the same terms in another order, so each component is within
+// 4 n eps sum_j |t_j| of the scalar loop's (reordered_sum_bound.hpp; the
+// largest difference is printed against it). A block that dropped the
+// viscosity, or counted a pair beyond the support, would be off by a whole
+// term. (The pass uses the blocks only where they pay, with AVX2 or
 // AVX-512; the function is compared here on every build.)
-BOOST_AUTO_TEST_CASE(force_blocks_equal_the_scalar_loop_bit_for_bit) {
+BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
   struct StoreAcceleration {
     void operator()(std::size_t i, Particles<2>& P, const PairRates<2>& r) const { P.a[i] = r.a; }
   };
@@ -213,19 +218,33 @@ BOOST_AUTO_TEST_CASE(force_blocks_equal_the_scalar_loop_bit_for_bit) {
       Particles<2> blocks = P, scalar = P;
       for (auto& a : blocks.a) a.setConstant(-1);
       for (auto& a : scalar.a) a.setConstant(-2);
-      auto loop = [&](Particles<2>& Q, const auto& fluidRow) {
-        runPairLoop(Q, s.neighbours(), kernel, kernel.support(), std::make_tuple(pressure, viscosity), wallPairs,
-                    std::tuple<>{}, StoreAcceleration{}, NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow);
+      Particles<2> magnitude = P;
+      const auto fluidPairs = std::make_tuple(pressure, viscosity);
+      auto loop = [&](Particles<2>& Q, const auto& fluid, const auto& walls, const auto& fluidRow) {
+        runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, walls, std::tuple<>{}, StoreAcceleration{},
+                    NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow);
       };
-      loop(blocks, PressureViscosityRow<WendlandC2<2>>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
-      loop(scalar, PairByPair{});
-      std::size_t differ = 0, loaded = 0;
+      loop(blocks, fluidPairs, wallPairs, PressureViscosityRow<WendlandC2<2>>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
+      loop(scalar, fluidPairs, wallPairs, PairByPair{});
+      loop(magnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{});
+      std::size_t beyond = 0, differ = 0, loaded = 0;
+      Real worst = 0;  // the largest difference over its bound
       for (std::size_t i = 0; i < P.fluidCount(); ++i) {
+        const NeighbourList<2>::Row row = s.neighbours().row(i);
+        for (int d = 0; d < 2; ++d) {
+          const Real bound = test::reorderedSumBound(row.end - row.begin, magnitude.a[i][d]);
+          const Real difference = std::abs(blocks.a[i][d] - scalar.a[i][d]);
+          beyond += !(difference <= bound);
+          if (bound > 0) worst = std::max(worst, difference / bound);
+        }
         differ += blocks.a[i] != scalar.a[i];
         loaded += scalar.a[i].norm() > 1;
       }
+      BOOST_TEST_MESSAGE(boundary << ", beta " << beta << ": " << differ << " of " << P.fluidCount()
+                                  << " accelerations differ in their last bits, the largest difference "
+                                  << worst << " of its bound");
       BOOST_TEST_INFO(boundary << ", beta " << beta);
-      BOOST_TEST(differ == 0u);
+      BOOST_TEST(beyond == 0u);
       BOOST_TEST(loaded > P.fluidCount() / 4);  // the accelerations are not trivially zero
     }
   }
@@ -237,8 +256,15 @@ BOOST_AUTO_TEST_CASE(force_blocks_equal_the_scalar_loop_bit_for_bit) {
 // for 150 steps with dummy and dynamic walls, leap-frog (both walks in
 // blocks), RK4 (the density rate in the force pass: the force walk stays
 // scalar) and XSPH on (the force walk stays scalar, the density rate does
-// not). Tolerance 0 on every particle's x, v and rho.
-BOOST_AUTO_TEST_CASE(runs_with_blocks_are_the_scalar_runs_bit_for_bit) {
+// not). The two runs add each sum in another order, so they part by
+// round-off, which the flow then carries: every particle's x within
+// 1e-9 h, v within 1e-9 c0 and rho within 1e-9 rho0 (measured 2026-12-06:
+// at most 4e-15 h, 3e-16 c0, 5e-16 rho0; the RK4 and XSPH runs come out
+// the same bits, their force walk being scalar and the density rate's
+// last bits below rho's. With blocks that left out the viscosity and the
+// diffusion, tried: 2e-3 to 3e-3 h, and 2e-4 rho0 with the diffusion
+// alone left out).
+BOOST_AUTO_TEST_CASE(runs_with_blocks_match_the_scalar_runs) {
   struct Variant {
     const char* boundary;
     const char* integrator;
@@ -260,9 +286,19 @@ BOOST_AUTO_TEST_CASE(runs_with_blocks_are_the_scalar_runs_bit_for_bit) {
     const Particles<2>& b = ends[1];
     BOOST_TEST_INFO(variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph);
     BOOST_REQUIRE(a.size() == b.size());
-    std::size_t differ = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) differ += a.x[i] != b.x[i] || a.v[i] != b.v[i] || a.rho[i] != b.rho[i];
-    BOOST_TEST(differ == 0u);
+    Real dx = 0, dv = 0, drho = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      BOOST_REQUIRE(a.id[i] == b.id[i]);
+      dx = std::max(dx, (a.x[i] - b.x[i]).norm() / c.h);
+      dv = std::max(dv, (a.v[i] - b.v[i]).norm() / c.c0);
+      drho = std::max(drho, std::abs(a.rho[i] - b.rho[i]) / c.rho0);
+    }
+    BOOST_TEST_MESSAGE(variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph
+                                        << ": largest |dx|/h " << dx << ", |dv|/c0 " << dv << ", |drho|/rho0 "
+                                        << drho);
+    BOOST_TEST(dx <= 1e-9);
+    BOOST_TEST(dv <= 1e-9);
+    BOOST_TEST(drho <= 1e-9);
     BOOST_TEST(a.v[0].norm() > 0);  // the column moved
   }
 }

@@ -1,13 +1,20 @@
 // What the row functions that take a fluid particle's fluid neighbours in
 // SIMD blocks share (passes/density_rate_blocks.hpp, passes/force_blocks.hpp;
-// runPairLoop's fluidRow, pair_loop.hpp). A row function forms each pair in a lane with the scalar loop's operations, in the
-// same order (no contracted multiply-add: the build's -ffp-contract=off),
-// and adds the lanes' results to the sums one pair after the other in the
-// list's order, so the rates are the scalar loop's bit for bit (tests:
-// continuity/density_rate_blocks_..., wcsph_terms/force_blocks_...). The
-// wall neighbours, the wall particles' own rates and the epilogues stay
-// runPairLoop's. A row function skips the pairs in the list's skin as the
-// scalar loop does.
+// runPairLoop's fluidRow, pair_loop.hpp). A row walks its neighbours 8 at a
+// time: each lane forms one pair with the scalar evaluators' formulas and
+// adds it to the lane's own partial sum, and the row adds the 8 partial sums
+// at its end. So a row's sum is the scalar loop's with its terms in another
+// order: different in the last bits (a few n eps sum_j |term_j| for n
+// pairs; the tests continuity/density_rate_blocks_match_the_scalar_loop and
+// wcsph_terms/force_blocks_match_the_scalar_loop hold it to that bound), and
+// the same on every run, thread count and resume (the order depends on the
+// neighbour list alone). Adding the lanes' results one pair after the other
+// in the list's order instead, as the first form of these rows did (the
+// scalar loop's bits), made the dam break 1.55 times slower: the serial
+// chain of additions, not the pairs' arithmetic, bounded the walk. The wall
+// neighbours, the wall particles' own rates and the epilogues stay
+// runPairLoop's. A row skips the pairs in the list's skin as the scalar
+// loop does.
 #pragma once
 
 #include "sph/neighbour_list.hpp"
@@ -36,7 +43,7 @@ constexpr bool kPairBlocksPay = false;
 
 // Whether the passes may take the blocks where they pay (true): off, every
 // pass runs the scalar loop; for the tests that compare whole runs both
-// ways (wcsph_terms/runs_with_blocks_are_the_scalar_runs_bit_for_bit).
+// ways (wcsph_terms/runs_with_blocks_match_the_scalar_runs).
 inline bool& pairBlocksAllowed() {
   static bool allowed = true;
   return allowed;
@@ -49,6 +56,18 @@ inline std::uint32_t blockIndices(const std::uint32_t* block, std::uint32_t left
   const std::uint32_t filled = left < kPairBlock ? left : kPairBlock;
   for (std::uint32_t l = 0; l < kPairBlock; ++l) index[l] = block[l < filled ? l : 0];
   return filled;
+}
+
+// Whether lane l of a block with `filled` real pairs adds its pair: a real
+// pair inside the kernel's support (r^2 < support^2, as the scalar loop).
+[[gnu::always_inline]] inline bool laneCounts(int l, std::uint32_t filled, Real r2, Real support2) {
+  return (l < static_cast<int>(filled)) & (r2 < support2);
+}
+
+// The sum of a row's 8 partial sums, in a fixed order (pairwise).
+[[gnu::always_inline]] inline Real laneTotal(const Real (&s)[kPairBlock]) {
+  static_assert(kPairBlock == 8);
+  return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
 }
 
 // One lane's pair in 2D, as makePair (pair_loop.hpp) forms it: r_ij =

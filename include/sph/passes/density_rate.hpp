@@ -13,7 +13,7 @@
 // (terms/optional_terms.hpp) follow the diffusion, in their list order.
 // In 2D with Wendland C2 and no such term, on a build for AVX2 or AVX-512,
 // the fluid pairs go in SIMD blocks instead (density_rate_blocks.hpp: the
-// same rates bit for bit).
+// same rates up to the order of the sum).
 #pragma once
 
 #include "sph/boundaries/wall_sums.hpp"

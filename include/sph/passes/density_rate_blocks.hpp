@@ -5,12 +5,10 @@
 //              + 2 delta h c0 sum_j V_j psi_ij (-r_ij . grad_i W_ij) / (r_ij^2 + eta^2)
 //                                                                      (density_diffusion.hpp)
 //
-// Each lane forms one pair's two contributions from the operations of the
-// scalar pair loop, in its order (pair_loop.hpp: makePair,
-// ContinuityDensity::add, DensityDiffusion::add); the lanes' results are
-// added one pair after the other, so the rate is the scalar loop's bit for
-// bit. Only the work per pair is vectorised (the gathers of x, v, m, rho,
-// V, the square root, the kernel, the diffusion's division).
+// Each lane forms one pair's two contributions and adds them to its own
+// partial sum; the 8 partial sums are added at the row's end
+// (pair_loop_blocks.hpp). So the rate is the scalar loop's up to the order
+// of the sum (test continuity/density_rate_blocks_match_the_scalar_loop).
 #pragma once
 
 #include "sph/pair_loop_blocks.hpp"
@@ -44,29 +42,22 @@ struct DensityRateRow {
     const Real* V = diffuse ? diffusion.volume : rho;  // (a lane reads it either way: never a null array)
     const Real support = kernel.support(), support2 = support * support;
     const Kernel k = kernel;
-    Real drho = rates.drho;
+    alignas(64) Real sum[kPairBlock] = {};
     for (const std::uint32_t* block = begin; block < end; block += kPairBlock) {
       std::int64_t index[kPairBlock];
       const std::uint32_t filled = blockIndices(block, static_cast<std::uint32_t>(end - block), index);
-      alignas(64) Real continuity[kPairBlock], diffused[kPairBlock];
-      alignas(64) std::int64_t inside[kPairBlock];
 #pragma omp simd
       for (int l = 0; l < kPairBlock; ++l) {
         const std::int64_t j = index[l];
         const LanePair q = lanePair(xi0, xi1, x, j, k);
         const Real r0 = q.r0, r1 = q.r1, r2 = q.r2, r = q.r, g0 = q.g0, g1 = q.g1;
-        continuity[l] = m[j] * ((vi0 - v[2 * j]) * g0 + (vi1 - v[2 * j + 1]) * g1);
+        const Real continuity = m[j] * ((vi0 - v[2 * j]) * g0 + (vi1 - v[2 * j + 1]) * g1);
         const Real psi = (rho[j] - rhoi) + (h0 * r0 + h1 * r1);
-        diffused[l] = coefficient * V[j] * psi * (-(r0 * g0 + r1 * g1)) / (r * r + eta2);
-        inside[l] = r2 < support2;
-      }
-      for (std::uint32_t l = 0; l < filled; ++l) {
-        if (!inside[l]) continue;
-        drho += continuity[l];
-        if (diffuse) drho += diffused[l];
+        const Real diffused = coefficient * V[j] * psi * (-(r0 * g0 + r1 * g1)) / (r * r + eta2);
+        sum[l] += laneCounts(l, filled, r2, support2) ? continuity + (diffuse ? diffused : 0.0) : 0.0;
       }
     }
-    rates.drho = drho;
+    rates.drho += laneTotal(sum);
   }
 };
 

@@ -7,11 +7,11 @@
 //         - sum_j m_j Pi_ij grad_i W_ij,  Pi_ij = (-alpha cbar_ij mu_ij + beta mu_ij^2) / rhobar_ij
 //           for v_ij . r_ij < 0, mu_ij = h v_ij . r_ij / (r_ij^2 + 0.01 h^2)   (monaghan_viscosity.hpp)
 //
-// Each lane forms one pair's two contributions from the operations of the
-// scalar pair loop, in its order (pair_loop.hpp: makePair,
-// SymmetricPressure::add, MonaghanViscosity::add); the lanes' results are
-// added one pair after the other, pressure then viscosity, so the
-// acceleration is the scalar loop's bit for bit.
+// Each lane forms one pair's contribution, (m_j (p_i/rho_i^2 + p_j/rho_j^2)
+// + m_j Pi_ij) grad_i W_ij, and adds it to its own partial sums; the 8
+// partial sums are added at the row's end (pair_loop_blocks.hpp). So the
+// acceleration is the scalar loop's up to the order of the sum: within a
+// few n eps sum_j |term_j| (test wcsph_terms/force_blocks_match_the_scalar_loop).
 #pragma once
 
 #include "sph/pair_loop_blocks.hpp"
@@ -41,41 +41,29 @@ struct PressureViscosityRow {
     const Real support = kernel.support(), support2 = support * support;
     const Real h = kernel.h(), eps = 0.01, a = alpha, b = beta;
     const Kernel k = kernel;
-    Real ax = rates.a[0], ay = rates.a[1];
+    alignas(64) Real sx[kPairBlock] = {}, sy[kPairBlock] = {};
     for (const std::uint32_t* block = begin; block < end; block += kPairBlock) {
       std::int64_t index[kPairBlock];
       const std::uint32_t filled = blockIndices(block, static_cast<std::uint32_t>(end - block), index);
-      alignas(64) Real px[kPairBlock], py[kPairBlock], vx[kPairBlock], vy[kPairBlock];
-      alignas(64) std::int64_t inside[kPairBlock], viscous[kPairBlock];
 #pragma omp simd
       for (int l = 0; l < kPairBlock; ++l) {
         const std::int64_t j = index[l];
         const LanePair q = lanePair(xi0, xi1, x, j, k);
         const Real r0 = q.r0, r1 = q.r1, r2 = q.r2, r = q.r, g0 = q.g0, g1 = q.g1;
         const Real sp = -m[j] * (pi + pr[j]);
-        px[l] = sp * g0;
-        py[l] = sp * g1;
         const Real vr = (vi0 - v[2 * j]) * r0 + (vi1 - v[2 * j + 1]) * r1;
         const Real mu = h * vr / (r * r + eps * h * h);
         const Real cBar = (ci + c[j]) / 2, rhoBar = (rhoi + rho[j]) / 2;
         const Real Pi = (-a * cBar * mu + b * mu * mu) / rhoBar;
         const Real sv = -m[j] * Pi;
-        vx[l] = sv * g0;
-        vy[l] = sv * g1;
-        inside[l] = r2 < support2;
-        viscous[l] = !(vr >= 0);  // (as MonaghanViscosity::add, which skips vr >= 0 only)
-      }
-      for (std::uint32_t l = 0; l < filled; ++l) {
-        if (!inside[l]) continue;
-        ax += px[l];
-        ay += py[l];
-        if (!viscous[l]) continue;
-        ax += vx[l];
-        ay += vy[l];
+        const bool viscous = !(vr >= 0);  // (as MonaghanViscosity::add, which skips vr >= 0 only)
+        const Real s = laneCounts(l, filled, r2, support2) ? sp + (viscous ? sv : 0.0) : 0.0;
+        sx[l] += s * g0;
+        sy[l] += s * g1;
       }
     }
-    rates.a[0] = ax;
-    rates.a[1] = ay;
+    rates.a[0] += laneTotal(sx);
+    rates.a[1] += laneTotal(sy);
   }
 };
 

@@ -28,7 +28,8 @@
 // The water physics of 2D (Wendland C2, symmetric pressure and Monaghan's
 // viscosity, the density rate computed apart, nothing else in the pack)
 // takes its fluid-fluid pairs in SIMD blocks on a build for AVX2 or
-// AVX-512 (force_blocks.hpp: the same accelerations bit for bit).
+// AVX-512 (force_blocks.hpp: the same accelerations up to the order of
+// the sum).
 #pragma once
 
 #include "sph/boundaries/wall_sums.hpp"
@@ -185,7 +186,7 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
                              PairLoopParts{walls.inSums, wallRatesHere}, correct, prologue, fluidRow);
         };
         // The water physics of 2D in SIMD blocks (force_blocks.hpp: the
-        // same accelerations bit for bit), where they pay.
+        // same accelerations up to the order of the sum), where they pay.
         using V = std::decay_t<decltype(visc)>;
         if constexpr (kPairBlocksPay && D == 2 && std::is_same_v<K, WendlandC2<2>> &&
                       std::is_same_v<V, MonaghanViscosityChoice>) {
