@@ -22,6 +22,9 @@
 #include "sph/particles.hpp"
 
 #include <cmath>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 #include <cstdint>
 #include <tuple>
 
@@ -70,16 +73,42 @@ inline std::uint32_t blockIndices(const std::uint32_t* block, std::uint32_t left
   return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
 }
 
+// The 2D vectors (x, or v) of a block's 8 particles, one array per
+// component: with AVX, two 16-byte loads per pair of lanes and two shuffles
+// per 4 lanes, instead of a scalar load and an insert per component and
+// lane (what the compiler makes of a gather, tuned generic).
+[[gnu::always_inline]] inline void gatherVectors(const Real* xy, const std::int64_t (&index)[kPairBlock],
+                                                 Real (&c0)[kPairBlock], Real (&c1)[kPairBlock]) {
+#if defined(__AVX__)
+  for (int q = 0; q < kPairBlock; q += 4) {
+    const __m256d a = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(xy + 2 * index[q])),
+                                           _mm_loadu_pd(xy + 2 * index[q + 2]), 1);  // x_a y_a x_c y_c
+    const __m256d b = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(xy + 2 * index[q + 1])),
+                                           _mm_loadu_pd(xy + 2 * index[q + 3]), 1);  // x_b y_b x_d y_d
+    _mm256_storeu_pd(c0 + q, _mm256_unpacklo_pd(a, b));                               // x_a x_b x_c x_d
+    _mm256_storeu_pd(c1 + q, _mm256_unpackhi_pd(a, b));
+  }
+#else
+  for (int l = 0; l < kPairBlock; ++l) c0[l] = xy[2 * index[l]], c1[l] = xy[2 * index[l] + 1];
+#endif
+}
+
+// A scalar field of a block's 8 particles.
+[[gnu::always_inline]] inline void gatherScalars(const Real* f, const std::int64_t (&index)[kPairBlock],
+                                                 Real (&out)[kPairBlock]) {
+  for (int l = 0; l < kPairBlock; ++l) out[l] = f[index[l]];
+}
+
 // One lane's pair in 2D, as makePair (pair_loop.hpp) forms it: r_ij =
-// x_i - x_j, r^2, r, and grad_i W = dWdr_r(r) r_ij. `x`: x_0, y_0, x_1, ...
+// x_i - x_j, r^2, r, and grad_i W = dWdr_r(r) r_ij.
 struct LanePair {
   Real r0, r1, r2, r, g0, g1;
 };
 template <class Kernel>
-[[gnu::always_inline]] inline LanePair lanePair(Real xi0, Real xi1, const Real* x, std::int64_t j, const Kernel& k) {
+[[gnu::always_inline]] inline LanePair lanePair(Real xi0, Real xi1, Real xj0, Real xj1, const Kernel& k) {
   LanePair q;
-  q.r0 = xi0 - x[2 * j];
-  q.r1 = xi1 - x[2 * j + 1];
+  q.r0 = xi0 - xj0;
+  q.r1 = xi1 - xj1;
   q.r2 = q.r0 * q.r0 + q.r1 * q.r1;
   q.r = std::sqrt(q.r2);
   const Real w = k.dWdr_r(q.r);

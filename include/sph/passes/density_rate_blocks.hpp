@@ -46,12 +46,15 @@ struct DensityRateRow {
     for (const std::uint32_t* block = begin; block < end; block += kPairBlock) {
       std::int64_t index[kPairBlock];
       const std::uint32_t filled = blockIndices(block, static_cast<std::uint32_t>(end - block), index);
+      alignas(64) Real xj0[kPairBlock], xj1[kPairBlock], vj0[kPairBlock], vj1[kPairBlock];
+      gatherVectors(x, index, xj0, xj1);
+      gatherVectors(v, index, vj0, vj1);
 #pragma omp simd
       for (int l = 0; l < kPairBlock; ++l) {
-        const std::int64_t j = index[l];
-        const LanePair q = lanePair(xi0, xi1, x, j, k);
+        const LanePair q = lanePair(xi0, xi1, xj0[l], xj1[l], k);
         const Real r0 = q.r0, r1 = q.r1, r2 = q.r2, r = q.r, g0 = q.g0, g1 = q.g1;
-        const Real continuity = m[j] * ((vi0 - v[2 * j]) * g0 + (vi1 - v[2 * j + 1]) * g1);
+        const std::int64_t j = index[l];
+        const Real continuity = m[j] * ((vi0 - vj0[l]) * g0 + (vi1 - vj1[l]) * g1);
         const Real psi = (rho[j] - rhoi) + (h0 * r0 + h1 * r1);
         const Real diffused = coefficient * V[j] * psi * (-(r0 * g0 + r1 * g1)) / (r * r + eta2);
         sum[l] += laneCounts(l, filled, r2, support2) ? continuity + (diffuse ? diffused : 0.0) : 0.0;
