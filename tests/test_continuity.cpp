@@ -201,36 +201,37 @@ BOOST_AUTO_TEST_CASE(tait_by_multiplication_equals_pow_and_every_eos_inverts) {
 // diffusion, or counted a pair beyond the support, would be off by a whole
 // term. (The pass uses the blocks only where they pay, with AVX2 or
 // AVX-512; the function is compared here on every build.)
-BOOST_AUTO_TEST_CASE(density_rate_blocks_match_the_scalar_loop) {
+template <int D>
+void checkDensityRateBlocks() {
   for (const char* boundary : {"dummy", "dynamic"}) {
-    const CaseConfig c = test::waterColumn(boundary, 0.3);
-    const Scene<2> s = test::settled<2>(c, 60);
-    const Particles<2>& P = s.particles();
-    const WendlandC2<2> kernel(c.h);
+    const CaseConfig c = test::waterColumn(boundary, 0.3, D);
+    const Scene<D> s = test::settled<D>(c, 60);
+    const Particles<D>& P = s.particles();
+    const WendlandC2<D> kernel(c.h);
     const WallSums walls{true, std::string(boundary) == "dynamic"};
     for (int form = 0; form < 3; ++form) {  // none, Molteni, Fourtakas
       DensityDiffusionChoice choice;
       choice.delta = form == 0 ? 0.0 : 0.1;
       choice.hydrostatic = form == 2;
-      const DensityDiffusion<2> diffusion = DensityDiffusion<2>::build(choice, c.h, c.c0, c.rho0, Vec<2>(0, -9.81));
+      const DensityDiffusion<D> diffusion = DensityDiffusion<D>::build(choice, c.h, c.c0, c.rho0, gravityVector<D>(c));
       PairScratch scratch;
-      const ParticlePrologue<2> prologue = scratch.fit<2>(P.totalSize(), false, diffusion.active());
-      DensityDiffusion<2> here = diffusion;
+      const ParticlePrologue<D> prologue = scratch.fit<D>(P.totalSize(), false, diffusion.active());
+      DensityDiffusion<D> here = diffusion;
       here.volume = prologue.volume;
-      Particles<2> blocks = P, scalar = P;
+      Particles<D> blocks = P, scalar = P;
       std::fill(blocks.drho.begin(), blocks.drho.end(), -1.0);
       std::fill(scalar.drho.begin(), scalar.drho.end(), -2.0);
       const ContinuityDensity rate{true};
-      Particles<2> magnitude = P;
+      Particles<D> magnitude = P;
       const auto fluidPairs = std::make_tuple(rate, here);
       const auto wallPairs = std::make_tuple(rate);
       const auto wallOwn = std::make_tuple(ContinuityDensity{walls.densityRates});
-      auto loop = [&](Particles<2>& Q, const auto& fluid, const auto& wall, const auto& own, const auto& fluidRow) {
-        runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, wall, own, DensityRateEpilogue<2>{},
-                    DensityRateEpilogue<2>{}, PairLoopParts{walls.inSums, walls.densityRates},
+      auto loop = [&](Particles<D>& Q, const auto& fluid, const auto& wall, const auto& own, const auto& fluidRow) {
+        runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, wall, own, DensityRateEpilogue<D>{},
+                    DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, walls.densityRates},
                     NoGradientCorrection{}, prologue, fluidRow);
       };
-      loop(blocks, fluidPairs, wallPairs, wallOwn, DensityRateRow<WendlandC2<2>>{blocks, kernel, here});
+      loop(blocks, fluidPairs, wallPairs, wallOwn, DensityRateRow<D, WendlandC2<D>>{blocks, kernel, here});
       loop(scalar, fluidPairs, wallPairs, wallOwn, PairByPair{});
       loop(magnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), test::magnitudesOf(wallOwn),
            PairByPair{});
@@ -238,7 +239,7 @@ BOOST_AUTO_TEST_CASE(density_rate_blocks_match_the_scalar_loop) {
       Real worst = 0;  // the largest difference over its bound
       const std::size_t n = walls.densityRates ? P.size() : P.fluidCount();
       for (std::size_t i = 0; i < n; ++i) {
-        const NeighbourList<2>::Row row = s.neighbours().row(i);
+        const typename NeighbourList<D>::Row row = s.neighbours().row(i);
         const Real bound = test::reorderedSumBound(row.end - row.begin, magnitude.drho[i]);
         const Real difference = std::abs(blocks.drho[i] - scalar.drho[i]);
         beyond += !(difference <= bound);
@@ -246,14 +247,19 @@ BOOST_AUTO_TEST_CASE(density_rate_blocks_match_the_scalar_loop) {
         differ += blocks.drho[i] != scalar.drho[i];
         moving += std::abs(scalar.drho[i]) > 1;
       }
-      BOOST_TEST_MESSAGE(boundary << ", diffusion form " << form << ": " << differ << " of " << n
+      BOOST_TEST_MESSAGE(D << "D, " << boundary << ", diffusion form " << form << ": " << differ << " of " << n
                                   << " rates differ in their last bits, the largest difference " << worst
                                   << " of its bound");
-      BOOST_TEST_INFO(boundary << ", diffusion form " << form);
+      BOOST_TEST_INFO(D << "D, " << boundary << ", diffusion form " << form);
       BOOST_TEST(beyond == 0u);
       BOOST_TEST(moving > P.fluidCount() / 4);  // the rates are not trivially zero
     }
   }
+}
+
+BOOST_AUTO_TEST_CASE(density_rate_blocks_match_the_scalar_loop) {
+  checkDensityRateBlocks<2>();
+  checkDensityRateBlocks<3>();
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -83,15 +83,19 @@ inline CaseConfig bareWcsph(int dimension) {
 // C2 with h = 1.5 dx, Tait c0 = 20, continuity with delta-SPH 0.1,
 // Monaghan 0.02, gravity, leap-frog, dt 1e-4) with wall particles of
 // `boundary` and a neighbour-list skin `skin`: the water physics of the
-// dam break on a few hundred particles.
-inline CaseConfig waterColumn(const std::string& boundary, Real skin) {
-  CaseConfig c = bareWcsph(2);
+// dam break on a few hundred particles. In 3D the same column and tank
+// 0.04 m deep (y; gravity along -z).
+inline CaseConfig waterColumn(const std::string& boundary, Real skin, int dimension = 2) {
+  CaseConfig c = bareWcsph(dimension);
   c.kernel = "wendland_c2", c.spacing = 0.01, c.h = 0.015;
   c.eos = "tait", c.c0 = 20, c.rho0 = 1000, c.g = 9.81;
   c.density = "continuity", c.delta = 0.1;
   c.viscosity = "monaghan", c.alpha = 0.02, c.beta = 0;
   c.walls = true, c.boundary = boundary;
-  c.domainMin = {0, 0}, c.domainMax = {0.4, 0.3}, c.blockMin = {0, 0}, c.blockMax = {0.1, 0.2};
+  if (dimension == 2)
+    c.domainMin = {0, 0}, c.domainMax = {0.4, 0.3}, c.blockMin = {0, 0}, c.blockMax = {0.1, 0.2};
+  else
+    c.domainMin = {0, 0, 0}, c.domainMax = {0.4, 0.04, 0.3}, c.blockMin = {0, 0, 0}, c.blockMax = {0.1, 0.04, 0.2};
   c.dt = 1e-4, c.neighbourSkin = skin;
   return c;
 }

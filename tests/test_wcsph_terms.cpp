@@ -189,49 +189,50 @@ BOOST_AUTO_TEST_CASE(adaptive_time_step_names_its_criterion) {
 // with the force pass's packs: symmetric pressure, then Monaghan's
 // viscosity), on a dam-break column after 60 steps (disordered, the list's
 // skin holding pairs beyond the support, approaching and receding pairs),
-// with dummy and dynamic walls, with beta 0 and 1. Tolerance: the blocks
-// add the same terms in another order, so each component is within
+// with dummy and dynamic walls, with beta 0 and 1, in 2D and 3D. Tolerance:
+// the blocks add the same terms in another order, so each component is within
 // 4 n eps sum_j |t_j| of the scalar loop's (reordered_sum_bound.hpp; the
 // largest difference is printed against it). A block that dropped the
 // viscosity, or counted a pair beyond the support, would be off by a whole
 // term. (The pass uses the blocks only where they pay, with AVX2 or
 // AVX-512; the function is compared here on every build.)
-BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
+template <int D>
+void checkForceBlocks() {
   struct StoreAcceleration {
-    void operator()(std::size_t i, Particles<2>& P, const PairRates<2>& r) const { P.a[i] = r.a; }
+    void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const { P.a[i] = r.a; }
   };
   struct NoRates {
-    void operator()(std::size_t, Particles<2>&, const PairRates<2>&) const {}
+    void operator()(std::size_t, Particles<D>&, const PairRates<D>&) const {}
   };
   for (const char* boundary : {"dummy", "dynamic"}) {
-    const CaseConfig c = test::waterColumn(boundary, 0.3);
-    const Scene<2> s = test::settled<2>(c, 60);
-    const Particles<2>& P = s.particles();
-    const WendlandC2<2> kernel(c.h);
+    const CaseConfig c = test::waterColumn(boundary, 0.3, D);
+    const Scene<D> s = test::settled<D>(c, 60);
+    const Particles<D>& P = s.particles();
+    const WendlandC2<D> kernel(c.h);
     for (const Real beta : {0.0, 1.0}) {
       PairScratch scratch;
-      const ParticlePrologue<2> prologue = scratch.fit<2>(P.totalSize(), true, false);
+      const ParticlePrologue<D> prologue = scratch.fit<D>(P.totalSize(), true, false);
       const SymmetricPressure pressure{false, prologue.pOverRho2};
-      const MonaghanViscosity<WendlandC2<2>> viscosity{kernel, 0.02, beta};
-      const auto wallPairs = std::make_tuple(pressure, MonaghanViscosity<WendlandC2<2>, true>{kernel, 0.02, beta});
+      const MonaghanViscosity<WendlandC2<D>> viscosity{kernel, 0.02, beta};
+      const auto wallPairs = std::make_tuple(pressure, MonaghanViscosity<WendlandC2<D>, true>{kernel, 0.02, beta});
       const PairLoopParts parts{true, false};
-      Particles<2> blocks = P, scalar = P;
+      Particles<D> blocks = P, scalar = P;
       for (auto& a : blocks.a) a.setConstant(-1);
       for (auto& a : scalar.a) a.setConstant(-2);
-      Particles<2> magnitude = P;
+      Particles<D> magnitude = P;
       const auto fluidPairs = std::make_tuple(pressure, viscosity);
-      auto loop = [&](Particles<2>& Q, const auto& fluid, const auto& walls, const auto& fluidRow) {
+      auto loop = [&](Particles<D>& Q, const auto& fluid, const auto& walls, const auto& fluidRow) {
         runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, walls, std::tuple<>{}, StoreAcceleration{},
                     NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow);
       };
-      loop(blocks, fluidPairs, wallPairs, PressureViscosityRow<WendlandC2<2>>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
+      loop(blocks, fluidPairs, wallPairs, PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
       loop(scalar, fluidPairs, wallPairs, PairByPair{});
       loop(magnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{});
       std::size_t beyond = 0, differ = 0, loaded = 0;
       Real worst = 0;  // the largest difference over its bound
       for (std::size_t i = 0; i < P.fluidCount(); ++i) {
-        const NeighbourList<2>::Row row = s.neighbours().row(i);
-        for (int d = 0; d < 2; ++d) {
+        const typename NeighbourList<D>::Row row = s.neighbours().row(i);
+        for (int d = 0; d < D; ++d) {
           const Real bound = test::reorderedSumBound(row.end - row.begin, magnitude.a[i][d]);
           const Real difference = std::abs(blocks.a[i][d] - scalar.a[i][d]);
           beyond += !(difference <= bound);
@@ -240,14 +241,19 @@ BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
         differ += blocks.a[i] != scalar.a[i];
         loaded += scalar.a[i].norm() > 1;
       }
-      BOOST_TEST_MESSAGE(boundary << ", beta " << beta << ": " << differ << " of " << P.fluidCount()
+      BOOST_TEST_MESSAGE(D << "D, " << boundary << ", beta " << beta << ": " << differ << " of " << P.fluidCount()
                                   << " accelerations differ in their last bits, the largest difference "
                                   << worst << " of its bound");
-      BOOST_TEST_INFO(boundary << ", beta " << beta);
+      BOOST_TEST_INFO(D << "D, " << boundary << ", beta " << beta);
       BOOST_TEST(beyond == 0u);
       BOOST_TEST(loaded > P.fluidCount() / 4);  // the accelerations are not trivially zero
     }
   }
+}
+
+BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
+  checkForceBlocks<2>();
+  checkForceBlocks<3>();
 }
 
 // Whole runs with the blocks where they pay and with the scalar loop
@@ -264,7 +270,8 @@ BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
 // last bits below rho's. With blocks that left out the viscosity and the
 // diffusion, tried: 2e-3 to 3e-3 h, and 2e-4 rho0 with the diffusion
 // alone left out).
-BOOST_AUTO_TEST_CASE(runs_with_blocks_match_the_scalar_runs) {
+template <int D>
+void checkRunsWithBlocks() {
   struct Variant {
     const char* boundary;
     const char* integrator;
@@ -272,19 +279,19 @@ BOOST_AUTO_TEST_CASE(runs_with_blocks_match_the_scalar_runs) {
   };
   for (const Variant& variant : {Variant{"dummy", "leap_frog", 0}, Variant{"dynamic", "leap_frog", 0},
                                  Variant{"dummy", "rk4", 0}, Variant{"dummy", "leap_frog", 0.5}}) {
-    CaseConfig c = test::waterColumn(variant.boundary, 0.2);
+    CaseConfig c = test::waterColumn(variant.boundary, 0.2, D);
     c.integrator = variant.integrator, c.xsph = variant.xsph;
-    std::vector<Particles<2>> ends;
+    std::vector<Particles<D>> ends;
     for (const bool allowed : {true, false}) {
       pairBlocksAllowed() = allowed;
-      Scene<2> s = test::sceneOf<2>(c);
+      Scene<D> s = test::sceneOf<D>(c);
       for (int n = 0; n < 150; ++n) BOOST_REQUIRE(!s.step());
       ends.push_back(s.particles());
     }
     pairBlocksAllowed() = true;
-    const Particles<2>& a = ends[0];
-    const Particles<2>& b = ends[1];
-    BOOST_TEST_INFO(variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph);
+    const Particles<D>& a = ends[0];
+    const Particles<D>& b = ends[1];
+    BOOST_TEST_INFO(D << "D, " << variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph);
     BOOST_REQUIRE(a.size() == b.size());
     Real dx = 0, dv = 0, drho = 0;
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -293,7 +300,7 @@ BOOST_AUTO_TEST_CASE(runs_with_blocks_match_the_scalar_runs) {
       dv = std::max(dv, (a.v[i] - b.v[i]).norm() / c.c0);
       drho = std::max(drho, std::abs(a.rho[i] - b.rho[i]) / c.rho0);
     }
-    BOOST_TEST_MESSAGE(variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph
+    BOOST_TEST_MESSAGE(D << "D, " << variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph
                                         << ": largest |dx|/h " << dx << ", |dv|/c0 " << dv << ", |drho|/rho0 "
                                         << drho);
     BOOST_TEST(dx <= 1e-9);
@@ -301,6 +308,11 @@ BOOST_AUTO_TEST_CASE(runs_with_blocks_match_the_scalar_runs) {
     BOOST_TEST(drho <= 1e-9);
     BOOST_TEST(a.v[0].norm() > 0);  // the column moved
   }
+}
+
+BOOST_AUTO_TEST_CASE(runs_with_blocks_match_the_scalar_runs) {
+  checkRunsWithBlocks<2>();
+  checkRunsWithBlocks<3>();
 }
 
 BOOST_AUTO_TEST_SUITE_END()

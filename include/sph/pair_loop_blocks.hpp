@@ -99,22 +99,51 @@ inline std::uint32_t blockIndices(const std::uint32_t* block, std::uint32_t left
   for (int l = 0; l < kPairBlock; ++l) out[l] = f[index[l]];
 }
 
-// One lane's pair in 2D, as makePair (pair_loop.hpp) forms it: r_ij =
-// x_i - x_j, r^2, r, and grad_i W = dWdr_r(r) r_ij.
-struct LanePair {
-  Real r0, r1, r2, r, g0, g1;
+// The positions (or velocities) of a block's 8 neighbours: in 2D gathered
+// into one array per component before the lanes (gatherVectors), in 3D read
+// by each lane from the particles' own array (the compiler's gather).
+template <int D>
+struct BlockVectors {
+  const Real* all;  // component d of particle j at all[D j + d]
+  const std::int64_t (&index)[kPairBlock];
+  alignas(64) Real c[D][kPairBlock];
+
+  [[gnu::always_inline]] BlockVectors(const Real* a, const std::int64_t (&idx)[kPairBlock]) : all(a), index(idx) {
+    if constexpr (D == 2) gatherVectors(all, index, c[0], c[1]);
+  }
+  [[gnu::always_inline]] Real operator()(int d, int l) const {
+    if constexpr (D == 2) return c[d][l];
+    else return all[D * index[l] + d];
+  }
 };
-template <class Kernel>
-[[gnu::always_inline]] inline LanePair lanePair(Real xi0, Real xi1, Real xj0, Real xj1, const Kernel& k) {
-  LanePair q;
-  q.r0 = xi0 - xj0;
-  q.r1 = xi1 - xj1;
-  q.r2 = q.r0 * q.r0 + q.r1 * q.r1;
+
+// One lane's pair, as makePair (pair_loop.hpp) forms it: r_ij = x_i - x_j,
+// r^2, r, and grad_i W = dWdr_r(r) r_ij.
+template <int D>
+struct LanePair {
+  Real rij[D], r2, r, g[D];
+};
+template <int D, class Kernel>
+[[gnu::always_inline]] inline LanePair<D> lanePair(const Real (&xi)[D], const BlockVectors<D>& xj, int l,
+                                                   const Kernel& k) {
+  LanePair<D> q;
+  q.r2 = 0;
+  for (int d = 0; d < D; ++d) {
+    q.rij[d] = xi[d] - xj(d, l);
+    q.r2 += q.rij[d] * q.rij[d];
+  }
   q.r = std::sqrt(q.r2);
   const Real w = k.dWdr_r(q.r);
-  q.g0 = w * q.r0;
-  q.g1 = w * q.r1;
+  for (int d = 0; d < D; ++d) q.g[d] = w * q.rij[d];
   return q;
+}
+
+// a . b over D components, as the lanes form it.
+template <int D>
+[[gnu::always_inline]] inline Real laneDot(const Real (&a)[D], const Real (&b)[D]) {
+  Real s = a[0] * b[0];
+  for (int d = 1; d < D; ++d) s += a[d] * b[d];
+  return s;
 }
 
 }  // namespace sph

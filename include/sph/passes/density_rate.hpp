@@ -11,7 +11,7 @@
 // (continuity_density.hpp), so no correction is formed here. One pair loop
 // per kernel. The optional terms that write the density rate only
 // (terms/optional_terms.hpp) follow the diffusion, in their list order.
-// In 2D with Wendland C2 and no such term, on a build for AVX2 or AVX-512,
+// With Wendland C2 and no such term, on a build for AVX2 or AVX-512,
 // the fluid pairs go in SIMD blocks instead (density_rate_blocks.hpp: the
 // same rates up to the order of the sum).
 #pragma once
@@ -69,10 +69,10 @@ unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighb
                              fluidRow);
         };
         using K = std::decay_t<decltype(k)>;
-        if constexpr (kPairBlocksPay && D == 2 && std::is_same_v<K, WendlandC2<2>>) {
+        if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>>) {
           if (pairBlocksAllowed() && !anyRateTermActive(terms) &&
               (diffusionHere.coefficient == 0 || diffusionHere.volume))
-            return loop(DensityRateRow<K>{P, k, diffusionHere});
+            return loop(DensityRateRow<D, K>{P, k, diffusionHere});
         }
         return loop(PairByPair{});
       },

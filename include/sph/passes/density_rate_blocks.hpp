@@ -1,5 +1,5 @@
 // The density-rate pass's fluid-fluid pairs in SIMD blocks
-// (pair_loop_blocks.hpp), in 2D with a kernel whose dWdr_r vectorises:
+// (pair_loop_blocks.hpp), in 2D and 3D, with a kernel whose dWdr_r vectorises:
 //
 //   d rho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij                       (continuity_density.hpp)
 //              + 2 delta h c0 sum_j V_j psi_ij (-r_ij . grad_i W_ij) / (r_ij^2 + eta^2)
@@ -23,22 +23,23 @@ namespace sph {
 // i, added to r.drho. `diffusion.volume`: m/rho of every particle, required
 // with the diffusion on (the scalar evaluator's fallback, m/rho at each
 // pair, is not repeated here).
-template <class Kernel>
+template <int D, class Kernel>
 struct DensityRateRow {
-  const Particles<2>& P;
+  const Particles<D>& P;
   Kernel kernel;
-  DensityDiffusion<2> diffusion;
+  DensityDiffusion<D> diffusion;
 
   [[gnu::always_inline]] void operator()(std::uint32_t i, const std::uint32_t* begin, const std::uint32_t* end,
-                                         PairRates<2>& rates) const {
-    const Real* x = P.x.front().data();  // x_0, y_0, x_1, y_1, ...
+                                         PairRates<D>& rates) const {
+    const Real* x = P.x.front().data();  // x_0, y_0, (z_0,) x_1, ...
     const Real* v = P.v.front().data();
     const Real* m = P.m.data();
     const Real* rho = P.rho.data();
-    const Real xi0 = x[2 * i], xi1 = x[2 * i + 1], vi0 = v[2 * i], vi1 = v[2 * i + 1], rhoi = rho[i];
+    Real xi[D], vi[D], hydrostatic[D];
+    for (int d = 0; d < D; ++d) xi[d] = x[D * i + d], vi[d] = v[D * i + d], hydrostatic[d] = diffusion.hydrostatic[d];
+    const Real rhoi = rho[i];
     const bool diffuse = diffusion.coefficient != 0;
     const Real coefficient = diffusion.coefficient, eta2 = diffusion.eta2;
-    const Real h0 = diffusion.hydrostatic[0], h1 = diffusion.hydrostatic[1];
     const Real* V = diffuse ? diffusion.volume : rho;  // (a lane reads it either way: never a null array)
     const Real support = kernel.support(), support2 = support * support;
     const Kernel k = kernel;
@@ -46,18 +47,17 @@ struct DensityRateRow {
     for (const std::uint32_t* block = begin; block < end; block += kPairBlock) {
       std::int64_t index[kPairBlock];
       const std::uint32_t filled = blockIndices(block, static_cast<std::uint32_t>(end - block), index);
-      alignas(64) Real xj0[kPairBlock], xj1[kPairBlock], vj0[kPairBlock], vj1[kPairBlock];
-      gatherVectors(x, index, xj0, xj1);
-      gatherVectors(v, index, vj0, vj1);
+      const BlockVectors<D> xj(x, index), vj(v, index);
 #pragma omp simd
       for (int l = 0; l < kPairBlock; ++l) {
-        const LanePair q = lanePair(xi0, xi1, xj0[l], xj1[l], k);
-        const Real r0 = q.r0, r1 = q.r1, r2 = q.r2, r = q.r, g0 = q.g0, g1 = q.g1;
+        const LanePair<D> q = lanePair<D>(xi, xj, l, k);
         const std::int64_t j = index[l];
-        const Real continuity = m[j] * ((vi0 - vj0[l]) * g0 + (vi1 - vj1[l]) * g1);
-        const Real psi = (rho[j] - rhoi) + (h0 * r0 + h1 * r1);
-        const Real diffused = coefficient * V[j] * psi * (-(r0 * g0 + r1 * g1)) / (r * r + eta2);
-        sum[l] += laneCounts(l, filled, r2, support2) ? continuity + (diffuse ? diffused : 0.0) : 0.0;
+        Real vij[D];
+        for (int d = 0; d < D; ++d) vij[d] = vi[d] - vj(d, l);
+        const Real continuity = m[j] * laneDot<D>(vij, q.g);
+        const Real psi = (rho[j] - rhoi) + laneDot<D>(hydrostatic, q.rij);
+        const Real diffused = coefficient * V[j] * psi * (-laneDot<D>(q.rij, q.g)) / (q.r * q.r + eta2);
+        sum[l] += laneCounts(l, filled, q.r2, support2) ? continuity + (diffuse ? diffused : 0.0) : 0.0;
       }
     }
     rates.drho += laneTotal(sum);

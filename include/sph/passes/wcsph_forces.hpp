@@ -25,7 +25,7 @@
 // damping, ...) come from their list: the pair terms' evaluators after the
 // pressure term in the fluid-fluid pack, the per-particle terms in the
 // epilogue; an inactive one is one predictable branch, not an instantiation.
-// The water physics of 2D (Wendland C2, symmetric pressure and Monaghan's
+// The water physics (Wendland C2, symmetric pressure and Monaghan's
 // viscosity, the density rate computed apart, nothing else in the pack)
 // takes its fluid-fluid pairs in SIMD blocks on a build for AVX2 or
 // AVX-512 (force_blocks.hpp: the same accelerations up to the order of
@@ -185,14 +185,14 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
                              std::make_tuple(ContinuityDensity{wallRatesHere}), epilogue, DensityRateEpilogue<D>{},
                              PairLoopParts{walls.inSums, wallRatesHere}, correct, prologue, fluidRow);
         };
-        // The water physics of 2D in SIMD blocks (force_blocks.hpp: the
+        // The water physics in SIMD blocks (force_blocks.hpp: the
         // same accelerations up to the order of the sum), where they pay.
         using V = std::decay_t<decltype(visc)>;
-        if constexpr (kPairBlocksPay && D == 2 && std::is_same_v<K, WendlandC2<2>> &&
+        if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>> &&
                       std::is_same_v<V, MonaghanViscosityChoice>) {
           if (pairBlocksAllowed() && !rateHere && !cspm && xsphEpsilon == 0 && !shifting.on &&
               !anyPairTermActive(terms) && prologue.pOverRho2)
-            return loop(PressureViscosityRow<K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta});
+            return loop(PressureViscosityRow<D, K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta});
         }
         return loop(PairByPair{});
       },
