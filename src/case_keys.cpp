@@ -214,7 +214,7 @@ const std::vector<KeySpec>& caseKeys() {
        "Verlet skin of the neighbour list, as a fraction of the kernel support: the list holds the pairs within "
        "support (1 + skin) and is rebuilt (with the sort by cell) only when a particle has moved more than half "
        "the skin since the last build; 0: rebuilt at every evaluation",
-       within(0, 1), "0.1 for model wcsph, 0 for seed_wcsph", nullptr},
+       within(0, 1), "0.05 for model wcsph, 0 for seed_wcsph", nullptr},
       {"neighbour_walk", G::kNumerics, &C::neighbourWalk, "",
        "How the passes visit each particle's neighbours: list (the pairs stored at each build, read back by every "
        "pass) or cells (no stored list: the grid's cells scanned again at every visit, about 150 bytes per "

@@ -15,7 +15,9 @@ inline constexpr const char* kDefaultViscosity = "laplacian";
 inline constexpr const char* kDefaultBoundary = "reflecting";
 inline constexpr const char* kDefaultDensity = "summation";
 // The neighbour list's Verlet skin under a composed model (a fraction of the
-// support; scene.hpp); the seed scheme keeps 0, a list per evaluation.
-inline constexpr double kDefaultNeighbourSkin = 0.1;
+// support; scene.hpp); the seed scheme keeps 0, a list per evaluation. 0.05
+// since the water walks' SIMD rows (2026-12-06: each listed pair beyond the
+// support costs a lane; docs/performance.md#neighbour-list-skin).
+inline constexpr double kDefaultNeighbourSkin = 0.05;
 
 }  // namespace sph
