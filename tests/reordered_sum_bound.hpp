@@ -1,14 +1,18 @@
 // How far two pair loops that add the same terms in different orders may
 // differ (the SIMD rows of pair_loop_blocks.hpp against the scalar loop).
-// Recursive or pairwise summation of n terms t_j in floating point is within
-// gamma_{n-1} sum_j |t_j| of the exact sum, gamma_k = k eps / (1 - k eps)
-// (Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., 2002,
-// eqs. 4.4 and 4.6, for any order); two orders are then within twice that,
-// and a term formed with another association of its products (the force
-// rows add (m_j P_ij + m_j Pi_ij) grad W instead of each apart) adds a few
-// eps |t_j| more. The bound used: 4 n eps sum_j |t_j|, n the particle's
-// listed neighbours. sum_j |t_j| comes from the scalar loop itself, with
-// each evaluator wrapped in MagnitudeOf.
+// Summation of k terms t_j in floating point, in any order (recursive or
+// pairwise), is within gamma_{k-1} sum_j |t_j| of the exact sum,
+// gamma_k = k u / (1 - k u), u = eps/2 the unit round-off (Higham, Accuracy
+// and Stability of Numerical Algorithms, 2nd ed., 2002, eqs. 4.4 and 4.6).
+// A row of n pairs sums up to k = 2n terms (continuity and diffusion, or
+// pressure and viscosity, per pair), so two orders are within
+// 2 gamma_{2n-1} ~ (2n - 1) eps of sum_j |t_j|; the force rows' one product
+// (m_j P_ij + m_j Pi_ij) grad W where the scalar loop takes two adds about
+// 2 u |t_j| per pair, at most n eps more. The bound used, 4 n eps
+// sum_j |t_j| (n the particle's listed neighbours), leaves a margin of
+// about 2. It holds only if each term is formed with the same operations
+// (the build's -ffp-contract=off). sum_j |t_j| comes from the scalar loop
+// itself, with each evaluator wrapped in MagnitudeOf.
 #pragma once
 
 #include "sph/pair_loop.hpp"
@@ -25,6 +29,8 @@ namespace sph::test {
 template <class Term>
 struct MagnitudeOf {
   static constexpr unsigned writes = Term::writes;
+  static_assert((Term::writes & ~(rates::kAcceleration | rates::kDensityRate)) == 0,
+                "MagnitudeOf sums the acceleration and the density rate only");
   Term term;
 
   unsigned bits() const { return packBits(std::make_tuple(term)); }

@@ -198,8 +198,9 @@ BOOST_AUTO_TEST_CASE(tait_by_multiplication_equals_pow_and_every_eos_inverts) {
 // the blocks add the same terms in another order, so each rate is within
 // 4 n eps sum_j |t_j| of the scalar loop's (reordered_sum_bound.hpp; the
 // largest difference is printed against it). A block that dropped the
-// diffusion, or counted a pair beyond the support, would be off by a whole
-// term. (The pass uses the blocks only where they pay, with AVX2 or
+// diffusion, or counted a padding lane (a repeat of the block's first
+// pair), would be off by a whole term. (A pair beyond the support adds an
+// exact 0 either way: the kernel's gradient is 0 there.) (The pass uses the blocks only where they pay, with AVX2 or
 // AVX-512; the function is compared here on every build.)
 template <int D>
 void checkDensityRateBlocks() {

@@ -567,8 +567,8 @@ BOOST_AUTO_TEST_CASE(resume_is_bit_identical) {
                       {"--output_every", "20", "--gradient_correction", "cspm", "--density_reinit", "shepard",
                        "--density_reinit_every", "20"},
                       "0.0023", "0.004"});
-  // A Verlet skin (wcsph's default 0.05 above rebuilds the list only at the
-  // start in these short runs): so thin that the list is rebuilt every few
+  // A Verlet skin (wcsph's default above rebuilds the list seldom in these
+  // short runs) so thin that the list is rebuilt every few
   // steps, stopped between two rebuilds; leap-frog's half-step density rate
   // and RK4's four evaluations; a periodic box, whose particles are wrapped
   // only at a rebuild.

@@ -193,8 +193,9 @@ BOOST_AUTO_TEST_CASE(adaptive_time_step_names_its_criterion) {
 // the blocks add the same terms in another order, so each component is within
 // 4 n eps sum_j |t_j| of the scalar loop's (reordered_sum_bound.hpp; the
 // largest difference is printed against it). A block that dropped the
-// viscosity, or counted a pair beyond the support, would be off by a whole
-// term. (The pass uses the blocks only where they pay, with AVX2 or
+// viscosity, or counted a padding lane (a repeat of the block's first
+// pair), would be off by a whole term. (A pair beyond the support adds an
+// exact 0 either way: the kernel's gradient is 0 there.) (The pass uses the blocks only where they pay, with AVX2 or
 // AVX-512; the function is compared here on every build.)
 template <int D>
 void checkForceBlocks() {
@@ -225,7 +226,8 @@ void checkForceBlocks() {
         runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, walls, std::tuple<>{}, StoreAcceleration{},
                     NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow);
       };
-      loop(blocks, fluidPairs, wallPairs, PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
+      loop(blocks, fluidPairs, wallPairs,
+           PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
       loop(scalar, fluidPairs, wallPairs, PairByPair{});
       loop(magnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{});
       std::size_t beyond = 0, differ = 0, loaded = 0;

@@ -2,8 +2,8 @@
 // fluid loop): the only place that forms r_ij, r, q and grad W for a pair
 // (but for the SIMD blocks of pair_loop_blocks.hpp, whose row functions,
 // passes/density_rate_blocks.hpp and passes/force_blocks.hpp, repeat these
-// operations lane by lane: tests hold their rates equal to this loop's bit
-// for bit).
+// operations lane by lane and add the pairs in another order: tests hold
+// their rates to this loop's within a bound on that reordering).
 //
 // For every fluid particle i it visits the fluid neighbours with the
 // evaluators of `FluidPairs` and the wall neighbours with those of
@@ -231,7 +231,7 @@ template <int D, class FluidRow>
 //   fluidRow(i, begin, end, rates)  optional: adds the fluid-fluid pairs of
 //                               fluid particle i, its neighbours [begin, end),
 //                               in place of `fluidPairs` (SIMD blocks that
-//                               repeat the pack's operations bit for bit:
+//                               repeat the pack's operations lane by lane:
 //                               pair_loop_blocks.hpp); the pack still names
 //                               the bits
 template <int D, class Kernel, class FluidPairs, class WallPairs, class WallParticlePairs, class Epilogue,

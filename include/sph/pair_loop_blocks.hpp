@@ -11,10 +11,14 @@
 // neighbour list alone). Adding the lanes' results one pair after the other
 // in the list's order instead, as the first form of these rows did (the
 // scalar loop's bits), made the dam break 1.55 times slower: the serial
-// chain of additions, not the pairs' arithmetic, bounded the walk. The wall
+// chain of additions, not the pairs' arithmetic, bounded the walk. Each
+// term is formed with the scalar evaluator's operations, in its order (the
+// build's -ffp-contract=off keeps the compiler from fusing them), so only
+// the order of the sum differs, and the force row's one product
+// (m_j P_ij + m_j Pi_ij) grad W where the scalar loop takes two. The wall
 // neighbours, the wall particles' own rates and the epilogues stay
-// runPairLoop's. A row skips the pairs in the list's skin as the scalar
-// loop does.
+// runPairLoop's. A row skips the pairs in the list's skin, and a pair whose
+// r^2 is NaN, as the scalar loop does.
 #pragma once
 
 #include "sph/neighbour_list.hpp"
@@ -36,8 +40,9 @@ constexpr int kPairBlock = 8;
 // Whether the blocks pay: with AVX2 or AVX-512 (the build's SPH_NATIVE, on
 // such a machine) they cut a walk's time; with the SSE2 of a portable
 // x86-64 build (2 lanes) the density-rate blocks measured 19% slower over
-// the whole dam break (6.98 against 5.88 CPU s), so the passes keep the
-// scalar loop there.
+// the whole dam break (6.98 against 5.88 CPU s; the rows' first form, with
+// the lanes' results added in order: not measured again), so the passes
+// keep the scalar loop there.
 #if defined(__AVX2__) || defined(__AVX512F__)
 constexpr bool kPairBlocksPay = true;
 #else
@@ -53,7 +58,7 @@ inline bool& pairBlocksAllowed() {
 }
 
 // The indices of the block of a row that starts at `block`, `filled` of
-// them real; a lane past the row's end takes the row's first neighbour
+// them real; a lane past the row's end takes the block's first neighbour
 // (its result is not added). Signed 64-bit: gather indices.
 inline std::uint32_t blockIndices(const std::uint32_t* block, std::uint32_t left, std::int64_t (&index)[kPairBlock]) {
   const std::uint32_t filled = left < kPairBlock ? left : kPairBlock;
@@ -93,12 +98,6 @@ inline std::uint32_t blockIndices(const std::uint32_t* block, std::uint32_t left
 #endif
 }
 
-// A scalar field of a block's 8 particles.
-[[gnu::always_inline]] inline void gatherScalars(const Real* f, const std::int64_t (&index)[kPairBlock],
-                                                 Real (&out)[kPairBlock]) {
-  for (int l = 0; l < kPairBlock; ++l) out[l] = f[index[l]];
-}
-
 // The positions (or velocities) of a block's 8 neighbours: in 2D gathered
 // into one array per component before the lanes (gatherVectors), in 3D read
 // by each lane from the particles' own array (the compiler's gather).
@@ -106,7 +105,8 @@ template <int D>
 struct BlockVectors {
   const Real* all;  // component d of particle j at all[D j + d]
   const std::int64_t (&index)[kPairBlock];
-  alignas(64) Real c[D][kPairBlock];
+  alignas(64) Real c[D == 2 ? 2 : 1][kPairBlock];  // the gathered components (2D only)
+  static_assert(sizeof(Vec<D>) == D * sizeof(Real), "the particles' vectors are D packed doubles");
 
   [[gnu::always_inline]] BlockVectors(const Real* a, const std::int64_t (&idx)[kPairBlock]) : all(a), index(idx) {
     if constexpr (D == 2) gatherVectors(all, index, c[0], c[1]);

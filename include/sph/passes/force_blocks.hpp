@@ -60,8 +60,9 @@ struct PressureViscosityRow {
         const Real Pi = (-a * cBar * mu + b * mu * mu) / rhoBar;
         const Real sv = -m[j] * Pi;
         const bool viscous = !(vr >= 0);  // (as MonaghanViscosity::add, which skips vr >= 0 only)
-        const Real s = laneCounts(l, filled, q.r2, support2) ? sp + (viscous ? sv : 0.0) : 0.0;
-        for (int d = 0; d < D; ++d) sa[d][l] += s * q.g[d];
+        const bool counts = laneCounts(l, filled, q.r2, support2);
+        const Real s = sp + (viscous ? sv : 0.0);
+        for (int d = 0; d < D; ++d) sa[d][l] += counts ? s * q.g[d] : 0.0;  // (not 0 x a NaN of a skipped pair)
       }
     }
     for (int d = 0; d < D; ++d) rates.a[d] += laneTotal(sa[d]);
