@@ -17,7 +17,9 @@
 // the order of the sum differs, and the force row's one product
 // (m_j P_ij + m_j Pi_ij) grad W where the scalar loop takes two. The wall
 // neighbours, the wall particles' own rates and the epilogues stay
-// runPairLoop's. A row skips the pairs in the list's skin, and a pair whose
+// runPairLoop's. Each row writes its own block loop around these helpers: a
+// shared walk calling the row's lambda per lane left GCC 12's loop scalar,
+// 2.5 times slower (docs/performance.md). A row skips the pairs in the list's skin, and a pair whose
 // r^2 is NaN, as the scalar loop does.
 #pragma once
 
