@@ -61,7 +61,7 @@ Scene<D> makeScene(const ResolvedCase& c, InitialState<D> init, Real startTime) 
   }
   Scene<D> scene(std::move(init.particles), makeModel<D>(c, motion), hooks.constraint(c), check, TimeStepControl{c.dt, c.cfl, c.endTime},
                  startTime, makeIntegrator<D>(c.integrator), c.neighbourSkin);
-  scene.setCellWalk(walkCells(c));
+  scene.setNeighbourStorage(neighbourStorage(c));
   if (periodic.any()) scene.setPeriodic(periodic);
   if (motion) scene.setWallMotion(*motion);
   if (shiftingOn(c))

@@ -373,6 +373,19 @@ BOOST_AUTO_TEST_CASE(a_run_on_ranks_repeats_bitwise) {
   BOOST_TEST(pieces == 9u);  // 3 snapshots x 3 ranks
 }
 
+// The packed list (which ranks keep as the plain list: their rows are in
+// id order) and the cell walk on ranks: the list's run, bit for bit.
+BOOST_AUTO_TEST_CASE(packed_list_and_cell_walk_on_ranks_are_the_lists) {
+  const auto list = sph::test::scratchDir("walk_list");
+  BOOST_REQUIRE(runRanks(2, runArgs("dam_break", list, "0.02", {"--neighbour_walk", "list"})).exitCode == 0);
+  for (const std::string walk : {"packed", "cells"}) {
+    const auto dir = sph::test::scratchDir("walk_" + walk);
+    const auto r = runRanks(2, runArgs("dam_break", dir, "0.02", {"--neighbour_walk", walk}));
+    BOOST_REQUIRE_MESSAGE(r.exitCode == 0, r.output);
+    compareSeriesBitwise(list, dir, "dam_break");
+  }
+}
+
 // A blow-up on some rank stops every rank, names the particle and its rank,
 // exits 3 and leaves the series readable (the seed scheme at h/dx = 2, as
 // test_blow_up.cpp).

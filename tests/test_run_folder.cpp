@@ -574,10 +574,12 @@ BOOST_AUTO_TEST_CASE(resume_is_bit_identical) {
   // only at a rebuild.
   variants.push_back({"water_skin", test::caseFile("dam_break_mm"),
                       {"--output_every", "20", "--neighbour_skin", "0.002"}, "0.0023", "0.004"});
-  // The cell walk (no stored list) with the same thin skin.
-  variants.push_back({"water_cells_skin", test::caseFile("dam_break_mm"),
-                      {"--output_every", "20", "--neighbour_skin", "0.002", "--neighbour_walk", "cells"}, "0.0023",
-                      "0.004"});
+  // The cell walk (no stored list) and the packed list with the same thin
+  // skin.
+  for (const char* walk : {"cells", "packed"})
+    variants.push_back({std::string("water_") + walk + "_skin", test::caseFile("dam_break_mm"),
+                        {"--output_every", "20", "--neighbour_skin", "0.002", "--neighbour_walk", walk}, "0.0023",
+                        "0.004"});
   variants.push_back({"rk4_skin", wcsph, {"--integrator", "rk4", "--output_every", "10", "--neighbour_skin", "0.002"},
                       "0.0017", "0.004"});
   // Particle shifting: the shift after a resume takes its sums from a walk

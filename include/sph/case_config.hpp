@@ -126,7 +126,7 @@ struct CaseConfig {
   // neighbour list (sph/scene.hpp): Verlet skin as a fraction of the support;
   // withDefaults() sets kDefaultNeighbourSkin for model wcsph, 0 for the seed
   Real neighbourSkin = 0;
-  std::string neighbourWalk = "list";  // list | cells
+  std::string neighbourWalk = "list";  // list | packed | cells
 
   // several MPI ranks (sph/scene.hpp): share the particles out again when the
   // busiest rank's work exceeds the mean by more than this fraction

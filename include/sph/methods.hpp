@@ -14,6 +14,7 @@
 #include "sph/case_keys.hpp"
 #include "sph/io/number_format.hpp"
 #include "sph/method_defaults.hpp"
+#include "sph/neighbour_list.hpp"
 #include "sph/boundaries/dummy_boundary.hpp"
 #include "sph/boundaries/dynamic_crespo2007.hpp"
 #include "sph/boundaries/reflecting_boundary.hpp"
@@ -334,16 +335,22 @@ inline const std::vector<Method<bool>>& negativePressureMethods() {
 }
 
 // How the passes visit each particle's neighbours (neighbour_walk key;
-// neighbour_list.hpp): from a list stored at each build, or by scanning the
-// grid's cells again at every visit. The same pairs in the same order, so
-// the same results; make() says whether the cells are walked.
-inline const std::vector<Method<bool>>& neighbourWalkMethods() {
-  static const std::vector<Method<bool>> m = {
-      {"list", "the pairs stored at each build of the neighbour list and read back by every pass (the faster)",
-       {}, [](const CaseConfig&) { return false; }},
+// neighbour_list.hpp): from a list stored at each build, from the same list
+// packed as one bit per candidate of the cells around each particle, or by
+// scanning the grid's cells again at every visit. The same pairs in the
+// same order, so the same results.
+inline const std::vector<Method<NeighbourStorage>>& neighbourWalkMethods() {
+  static const std::vector<Method<NeighbourStorage>> m = {
+      {"list", "the pairs stored at each build of the neighbour list (a 4-byte index each) and read back by "
+               "every pass",
+       {}, [](const CaseConfig&) { return NeighbourStorage::kList; }},
+      {"packed", "the same list packed: one bit per particle of the 3^D cells around each particle, "
+                 "unpacked at every visit (about a tenth of the list's bytes; on several MPI ranks, whose "
+                 "rows are ordered by id, the plain list)",
+       {}, [](const CaseConfig&) { return NeighbourStorage::kPacked; }},
       {"cells", "no stored list: every pass scans the 3^D cells around each particle again, as DualSPHysics "
-                "does (about 150 bytes per particle less in 2D, more time per walk)",
-       {}, [](const CaseConfig&) { return true; }},
+                "does (the list's bytes saved, more time per walk)",
+       {}, [](const CaseConfig&) { return NeighbourStorage::kCells; }},
   };
   return m;
 }
@@ -578,8 +585,8 @@ inline DensityDiffusionChoice densityDiffusion(const CaseConfig& c) {
   return methodRow(diffusionMethods(), "diffusion", c.diffusion).make(c);
 }
 
-// Whether the passes walk the grid's cells instead of a stored list (neighbour_walk key).
-inline bool walkCells(const CaseConfig& c) {
+// How the passes visit each particle's neighbours (neighbour_walk key).
+inline NeighbourStorage neighbourStorage(const CaseConfig& c) {
   return methodRow(neighbourWalkMethods(), "neighbour_walk", c.neighbourWalk).make(c);
 }
 

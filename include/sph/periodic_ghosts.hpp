@@ -166,11 +166,11 @@ void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours
   const std::vector<std::int64_t>* byId = nullptr;
   if constexpr (!std::is_void_v<Halos>)
     if (halos) byId = &P.id;
-  if (!neighbours.cellWalk()) {
+  if (!neighbours.visitsBuildPositions()) {
     neighbours.build(grid, P.x, radius, P.fluidCount(), P.size(), byId);
     return;
   }
-  if (P.xList.size() != P.x.size()) throw std::logic_error("sortByCell: a cell walk needs xList allocated");
+  if (P.xList.size() != P.x.size()) throw std::logic_error("sortByCell: a packed list or a cell walk needs xList allocated");
   std::copy(P.x.begin(), P.x.end(), P.xList.begin());
   neighbours.build(grid, P.xList, radius, P.fluidCount(), P.size(), byId);
 }

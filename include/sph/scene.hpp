@@ -128,13 +128,14 @@ class Scene {
   }
   // The neighbour list's Verlet skin, a fraction of the support (see the top).
   Real neighbourSkin() const { return skin_; }
-  // Walk the grid's cells at every visit instead of storing the list
-  // (neighbour_walk = cells; neighbour_list.hpp): the same pairs in the same
-  // order, so the same results, without the list's memory. It keeps the
-  // positions of each build in xList. Call before initialise() or resume().
-  void setCellWalk(bool on) {
-    neighbours_.setCellWalk(on);
-    if (on) P_.allocate(P_.allocated() | fieldBit(kFieldXList));
+  // Pack the list, or walk the grid's cells at every visit, instead of
+  // storing the list (neighbour_walk = packed | cells; neighbour_list.hpp):
+  // the same pairs in the same order, so the same results, in less memory.
+  // Both keep the positions of each build in xList. Call before
+  // initialise() or resume().
+  void setNeighbourStorage(NeighbourStorage storage) {
+    neighbours_.setStorage(storage);
+    if (neighbours_.visitsBuildPositions()) P_.allocate(P_.allocated() | fieldBit(kFieldXList));
   }
   // Run on the ranks of `comm` (R > 1; with one rank nothing changes): keep
   // this rank's share of the particles (every rank built the same), and
@@ -514,7 +515,7 @@ void Scene<D>::sort(bool carryAll) {
              decomposition_.get());
   ++listBuilds_;
   // (A cell walk had sortByCell copy them already, the ghosts' included.)
-  if (skin_ > 0 && !neighbours_.cellWalk()) std::copy(P_.x.begin(), P_.x.begin() + static_cast<std::ptrdiff_t>(P_.size()), P_.xList.begin());
+  if (skin_ > 0 && !neighbours_.visitsBuildPositions()) std::copy(P_.x.begin(), P_.x.begin() + static_cast<std::ptrdiff_t>(P_.size()), P_.xList.begin());
 }
 
 // Every sort on several ranks, before anything moves: the particles are
