@@ -7,23 +7,47 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <system_error>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
 namespace sph::test {
 
-// A fresh, empty scratch folder under the system temp folder.
+// The scratch folders this test process made, removed when it exits
+// (after main returns), unless the environment has SPH_KEEP_TEST_OUTPUT
+// (to look at a failing test's files: its messages name the folders).
+struct ScratchFolders {
+  std::vector<std::filesystem::path> made;
+  ScratchFolders() = default;
+  ScratchFolders(const ScratchFolders&) = delete;
+  ScratchFolders& operator=(const ScratchFolders&) = delete;
+  ~ScratchFolders() {
+    if (std::getenv("SPH_KEEP_TEST_OUTPUT")) return;
+    std::error_code ignored;
+    for (const auto& dir : made) std::filesystem::remove_all(dir, ignored);
+  }
+};
+inline ScratchFolders& scratchFolders() {
+  static ScratchFolders folders;
+  return folders;
+}
+
+// A fresh, empty scratch folder under the system temp folder (removed when
+// the test process exits: ScratchFolders).
 inline std::filesystem::path scratchDir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("sph_test_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  ScratchFolders& folders = scratchFolders();
+  if (std::find(folders.made.begin(), folders.made.end(), dir) == folders.made.end()) folders.made.push_back(dir);
   return dir;
 }
 
