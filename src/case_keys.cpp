@@ -217,7 +217,7 @@ const std::vector<KeySpec>& caseKeys() {
        within(0, 1), "0.05 for model wcsph, 0 for seed_wcsph", nullptr},
       {"neighbour_walk", G::kNumerics, &C::neighbourWalk, "",
        "How the passes visit each particle's neighbours: list (the pairs stored at each build, read back by every "
-       "pass), packed (the same list as one bit per particle of the cells around each particle, about a tenth "
+       "pass), packed (the same list as one bit per particle of the cells around each particle, about an eighth "
        "of its bytes) or cells (no stored list: the grid's cells scanned again at every visit, slower); the same "
        "pairs in the same order, so the same results",
        {}, nullptr, neighbourWalkNames},

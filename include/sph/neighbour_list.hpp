@@ -40,11 +40,11 @@
 // again (at the positions of the build, like the cell walk) and turns the
 // set bits back into indices, in the scan's order, in a small per-thread
 // row: the list's pairs in the list's order, so every result is bit for bit
-// the stored list's, for about a tenth of its bytes (the stencil holds
-// 3^D / (volume of the unit ball) times the neighbours within the radius:
-// about 2.9 times in 2D, 6.4 in 3D, one bit each, against 32 bits per
-// neighbour). Order by id cannot be packed: with byId the build stores the
-// plain list.
+// the stored list's, for about an eighth of its bytes in 2D and a sixth in
+// 3D (the stencil holds 3^D / (volume of the unit ball) times the
+// neighbours within the radius: about 2.9 times in 2D, 6.4 in 3D, one bit
+// each, against 32 bits per neighbour; plus 4 bytes a particle). Order by
+// id cannot be packed: with byId the build stores the plain list.
 //
 // Order by id (`byId`, given on several MPI ranks): each run of a row
 // (fluid neighbours, wall neighbours) is sorted by the neighbours' ids (a
@@ -72,6 +72,9 @@
 
 namespace sph {
 
+// (The packed list's bits are written and read as little-endian words.)
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the packed neighbour list assumes a little-endian machine");
+
 // How the pairs are kept between builds (neighbour_walk key; above).
 enum class NeighbourStorage { kList, kPacked, kCells };
 
@@ -79,8 +82,8 @@ template <int D>
 class NeighbourList {
  public:
   // Rows for the owned particles [0, ownedCount): fluid below fluidCount.
-  // (Cell walk: nothing is stored; `x` must stay, unchanged, the positions
-  // of this build until the next one: the scene passes its list_build_position.)
+  // (Packed list and cell walk: `x` must stay, unchanged, the positions of
+  // this build until the next one: the scene passes its list_build_position.)
   // byId: order each run by these ids (above; nullptr: the scan's order).
   void build(const HashGrid<D>& grid, const std::vector<Vec<D>>& x, Real radius,
              std::size_t fluidCount = SIZE_MAX, std::size_t ownedCount = SIZE_MAX,
@@ -132,13 +135,11 @@ class NeighbourList {
   // before it.
   template <class Buffer, class Row>
   void buildChunks(std::vector<Buffer>& buffers, std::size_t n, Row&& row) {
-    const int threads = omp_get_max_threads();
-    if (static_cast<int>(buffers.size()) < threads) {
-      buffers.resize(static_cast<std::size_t>(threads));
-      used_.resize(static_cast<std::size_t>(threads));
-    }
+    const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+    if (buffers.size() < threads) buffers.resize(threads);
+    if (used_.size() < threads) used_.resize(threads);
     begin_.resize(n + 1);
-    chunkStart_.assign(static_cast<std::size_t>(threads) + 1, n);
+    chunkStart_.assign(threads + 1, n);
     usedChunks_ = 0;
 #pragma omp parallel if (n >= kMinParallelSize)
     {
@@ -178,7 +179,7 @@ class NeighbourList {
       if (wallRanges)
         for (int s = 0; s < stencil.wallCount; ++s) candidates += stencil.wallEnd[s] - stencil.wallBegin[s];
       const std::size_t need = used + candidates / 8 + 16;
-      if (need > bytes.size()) grow(bytes, need + used / 4 + 64);
+      if (need > bytes.size()) grow(bytes, need);
       BitWriter out{bytes.data() + used};
       packBits(out, i, xi, x, radius2, stencil.begin, stencil.end, stencil.count);
       if (wallRanges) packBits(out, i, xi, x, radius2, stencil.wallBegin, stencil.wallEnd, stencil.wallCount);
@@ -214,18 +215,20 @@ class NeighbourList {
         out.put(static_cast<std::uint64_t>((Vec<D>(xi - x[j]).squaredNorm() < radius2) & (j != i)));
   }
 
+ public:
   // Append to row[used...] the indices whose bits are set among the
   // candidates of the ranges [begin[s], end[s]), read from `bits` at bit
-  // `position` (advanced past them); returns the new fill.
+  // `position` (advanced past them); returns the new fill. `bits` has 8
+  // readable bytes past the last one it holds (the build keeps them).
   [[gnu::always_inline]] static std::size_t unpackBits(std::vector<std::uint32_t>& row, std::size_t used,
                                                        const std::uint8_t* bits, std::size_t& position,
                                                        const std::uint32_t* begin, const std::uint32_t* end,
                                                        int ranges) {
+#if defined(__AVX512F__)
     for (int s = 0; s < ranges; ++s) {
       const std::uint32_t b = begin[s], e = end[s];
       if (used + (e - b) + 16 > row.size()) row.resize(used + (e - b) + 64);
       std::uint32_t* out = row.data();
-#if defined(__AVX512F__)
       // 16 candidates at a time, without a branch per neighbour: the lanes
       // j0 + 0..15, compressed by their bits, stored whole (the row keeps 16
       // spare entries), the fill advanced by the count.
@@ -240,7 +243,22 @@ class NeighbourList {
         _mm512_storeu_si512(out + used, _mm512_maskz_compress_epi32(mask, j));
         used += static_cast<std::size_t>(__builtin_popcount(mask));
       }
+    }
+    return used;
 #else
+    return unpackBitsLoop(row, used, bits, position, begin, end, ranges);
+#endif
+  }
+
+  // The same, one set bit at a time (the portable build's; tests compare
+  // the two).
+  static std::size_t unpackBitsLoop(std::vector<std::uint32_t>& row, std::size_t used, const std::uint8_t* bits,
+                                    std::size_t& position, const std::uint32_t* begin, const std::uint32_t* end,
+                                    int ranges) {
+    for (int s = 0; s < ranges; ++s) {
+      const std::uint32_t b = begin[s], e = end[s];
+      if (used + (e - b) + 16 > row.size()) row.resize(used + (e - b) + 64);
+      std::uint32_t* out = row.data();
       for (std::uint32_t j0 = b; j0 < e; j0 += 56) {
         const unsigned length = std::min<std::uint32_t>(56, e - j0);
         std::uint64_t word;
@@ -249,12 +267,10 @@ class NeighbourList {
         position += length;
         for (; word; word &= word - 1) out[used++] = j0 + static_cast<std::uint32_t>(__builtin_ctzll(word));
       }
-#endif
     }
     return used;
   }
 
- public:
   // Append to list[used...] the neighbours of xi in the particle ranges
   // [begin[s], end[s]); returns the new fill. Branch-free: write always,
   // advance only for a neighbour.
@@ -263,7 +279,7 @@ class NeighbourList {
                           const std::uint32_t* end, int ranges) {
     for (int s = 0; s < ranges; ++s) {
       const std::uint32_t b = begin[s], e = end[s];
-      if (used + (e - b) > list.size()) grow(list, used + (e - b) + used / 4 + 64);
+      if (used + (e - b) > list.size()) grow(list, used + (e - b));
       std::uint32_t* out = list.data();
       for (std::uint32_t j = b; j < e; ++j) {
         out[used] = j;
@@ -285,13 +301,17 @@ class NeighbourList {
     });
   }
 
-  // Resize to n with capacity n: a quarter more than the fill is the growth
-  // (resize alone would double the capacity, and the buffer is the largest
-  // array of a run).
+  // Room for `need` entries. The size (the part ever written) runs 4096
+  // entries ahead of the need; the capacity, when it must grow, a quarter
+  // more (resize alone would double it, and the buffer is the largest array
+  // of a run). So a steady run does not reallocate at every build, and the
+  // capacity it never fills is never written: its memory pages are never
+  // touched, and take no memory.
   template <class T>
-  static void grow(std::vector<T>& list, std::size_t n) {
-    list.reserve(n);
-    list.resize(n);
+  static void grow(std::vector<T>& list, std::size_t need) {
+    constexpr std::size_t kAhead = 4096;
+    if (need + kAhead > list.capacity()) list.reserve(need + kAhead + need / 4);
+    list.resize(need + kAhead);
   }
 
   // Call f(j) for every neighbour j of particle i (fluid ones first).
@@ -324,8 +344,12 @@ class NeighbourList {
 
   // Store the list (the default), pack it, or walk the cells at every
   // visit; takes effect at the next build.
+  // Until then the list is empty and, packed or cells, unbound.
   void setStorage(NeighbourStorage storage) {
     storage_ = storage;
+    packed_ = false;
+    cells_ = CellWalk();
+    usedChunks_ = 0;
     if (storage != NeighbourStorage::kPacked) decltype(packedChunks_)().swap(packedChunks_);
     if (storage == NeighbourStorage::kList) return;
     decltype(chunks_)().swap(chunks_);
