@@ -62,13 +62,13 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <cstring>
+#include <vector>
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
 #endif
-#include <cstdint>
-#include <vector>
 
 namespace sph {
 
@@ -356,7 +356,6 @@ class NeighbourList {
     decltype(wallBegin_)().swap(wallBegin_);
     if (storage == NeighbourStorage::kCells) decltype(begin_)().swap(begin_);
     used_.clear();
-    usedChunks_ = 0;
   }
   NeighbourStorage storage() const { return storage_; }
   bool cellWalk() const { return storage_ == NeighbourStorage::kCells; }
@@ -413,46 +412,46 @@ class NeighbourList {
     return {list.data(), begin_[i], wallBegin_.empty() ? end : wallBegin_[i], end};
   }
 
-  // The cell walk's row of particle i, scanned into the calling thread's
-  // buffer exactly as build() would have listed it. (So a visit of one
-  // particle's neighbours must not start another visit in the same thread:
-  // no pass nests them.)
-  [[gnu::noinline]] Run scanCells(std::size_t i) const {
-    static thread_local Slot s;
-    if (s.build != cells_.build) {
-      s.build = cells_.build;
-      s.stencil.valid = false;
-    }
-    const std::vector<Vec<D>>& x = *cells_.x;
-    const Vec<D> xi = x[i];
-    cells_.grid->updateStencil(xi, s.stencil);
-    std::size_t used = scan(s.list, 0, i, xi, x, cells_.radius2, s.stencil.begin, s.stencil.end, s.stencil.count);
-    if (byId_) orderById(s.list.data(), s.list.data() + used, *byId_, x);
-    const auto split = static_cast<std::uint32_t>(used);
-    if (cells_.walls && i < cells_.fluidCount)
-      used = scan(s.list, used, i, xi, x, cells_.radius2, s.stencil.wallBegin, s.stencil.wallEnd,
-                  s.stencil.wallCount);
-    if (byId_) orderById(s.list.data() + split, s.list.data() + used, *byId_, x);
-    return {s.list.data(), 0, split, static_cast<std::uint32_t>(used)};
-  }
-
-  // The packed list's row of particle i (its bits in chunk t), unpacked
-  // into the calling thread's buffer (as the cell walk's: one visit at a
-  // time per thread).
-  [[gnu::noinline]] Run unpackRow(std::size_t i, std::size_t t) const {
+  // The row of particle i, rebuilt from its stencil at the build's
+  // positions into the calling thread's buffer: used = fill(row, used,
+  // begin, end, ranges) for the fluid ranges, then (a fluid particle) the
+  // wall ranges. (So a visit of one particle's neighbours must not start
+  // another visit in the same thread: no pass nests them.)
+  template <class Fill>
+  [[gnu::always_inline]] Run rowFromStencil(std::size_t i, Fill&& fill) const {
     static thread_local Slot s;
     if (s.build != cells_.build) {
       s.build = cells_.build;
       s.stencil.valid = false;
     }
     cells_.grid->updateStencil((*cells_.x)[i], s.stencil);
-    const std::uint8_t* bits = packedChunks_[t].data() + begin_[i];
-    std::size_t position = 0;
-    std::size_t used = unpackBits(s.list, 0, bits, position, s.stencil.begin, s.stencil.end, s.stencil.count);
+    std::size_t used = fill(s.list, 0, s.stencil.begin, s.stencil.end, s.stencil.count);
     const auto split = static_cast<std::uint32_t>(used);
     if (cells_.walls && i < cells_.fluidCount)
-      used = unpackBits(s.list, used, bits, position, s.stencil.wallBegin, s.stencil.wallEnd, s.stencil.wallCount);
+      used = fill(s.list, used, s.stencil.wallBegin, s.stencil.wallEnd, s.stencil.wallCount);
     return {s.list.data(), 0, split, static_cast<std::uint32_t>(used)};
+  }
+
+  // The cell walk's row: the build's own scan (and order by id), again.
+  [[gnu::noinline]] Run scanCells(std::size_t i) const {
+    const std::vector<Vec<D>>& x = *cells_.x;
+    const Vec<D> xi = x[i];
+    return rowFromStencil(i, [&](std::vector<std::uint32_t>& row, std::size_t used, const std::uint32_t* begin,
+                                 const std::uint32_t* end, int ranges) {
+      const std::size_t filled = scan(row, used, i, xi, x, cells_.radius2, begin, end, ranges);
+      if (byId_) orderById(row.data() + used, row.data() + filled, *byId_, x);
+      return filled;
+    });
+  }
+
+  // The packed list's row: particle i's bits (in chunk t), unpacked.
+  [[gnu::noinline]] Run unpackRow(std::size_t i, std::size_t t) const {
+    const std::uint8_t* bits = packedChunks_[t].data() + begin_[i];
+    std::size_t position = 0;
+    return rowFromStencil(i, [&](std::vector<std::uint32_t>& row, std::size_t used, const std::uint32_t* begin,
+                                 const std::uint32_t* end, int ranges) {
+      return unpackBits(row, used, bits, position, begin, end, ranges);
+    });
   }
 
   // The cell walk's state: what build() was given. Not carried by a copy
