@@ -14,7 +14,7 @@
 #include "sph/case_keys.hpp"
 #include "sph/io/number_format.hpp"
 #include "sph/method_defaults.hpp"
-#include "sph/neighbour_list.hpp"
+#include "sph/neighbour_storage.hpp"
 #include "sph/boundaries/dummy_boundary.hpp"
 #include "sph/boundaries/dynamic_crespo2007.hpp"
 #include "sph/boundaries/reflecting_boundary.hpp"

@@ -57,6 +57,7 @@
 #pragma once
 
 #include "sph/hash_grid.hpp"
+#include "sph/neighbour_storage.hpp"
 
 #include <omp.h>
 
@@ -74,9 +75,6 @@ namespace sph {
 
 // (The packed list's bits are written and read as little-endian words.)
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "the packed neighbour list assumes a little-endian machine");
-
-// How the pairs are kept between builds (neighbour_walk key; above).
-enum class NeighbourStorage { kList, kPacked, kCells };
 
 template <int D>
 class NeighbourList {
