@@ -3,6 +3,7 @@
 #include "pvd_reader.hpp"
 #include "test_support.hpp"
 
+#include "sph/io/plane_vector_array.hpp"
 #include "sph/io/pvtp_io.hpp"
 #include "sph/io/snapshot_polydata.hpp"
 #include "sph/io/vtp_io.hpp"
@@ -11,6 +12,7 @@
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -119,6 +121,57 @@ BOOST_AUTO_TEST_SUITE(io)
 
 BOOST_AUTO_TEST_CASE(borrowed_snapshot_arrays_equal_copies_2d) { expectBorrowedEqualsCopied<2>(); }
 BOOST_AUTO_TEST_CASE(borrowed_snapshot_arrays_equal_copies_3d) { expectBorrowedEqualsCopied<3>(); }
+
+// The 2D writer's view of a vector field (x, y, 0): VTK's XML writer reads
+// it block by block through its accessors (32 KiB blocks: 5000 particles are
+// 15000 values, four blocks and a partial one), so a file written through it
+// holds the values a copy holds, every block's and the last partial one's.
+// The view cannot be written to, and a copy of it is an ordinary array.
+BOOST_AUTO_TEST_CASE(plane_vector_view_writes_what_a_copy_writes) {
+  const std::size_t n = 5000;
+  const Particles<2> P = distinctParticles<2>(n, n - 300);
+  const auto dir = test::scratchDir("plane_view");
+  const std::string path = (dir / "view.vtp").string();
+  writeVtp<2>(path, P, SnapshotInfo{0.5, 3, 0.01, 0.0075, {0, 0}, {1, 1}});
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkPolyData* poly = reader->GetOutput();
+  BOOST_TEST_REQUIRE(poly->GetNumberOfPoints() == static_cast<vtkIdType>(n));
+  vtkDataArray* points = poly->GetPoints()->GetData();
+  vtkPointData* pd = poly->GetPointData();
+  BOOST_TEST(points->GetDataType() == VTK_DOUBLE);
+  std::size_t wrong = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto i = static_cast<vtkIdType>(k);
+    for (int c = 0; c < 3; ++c) {
+      const double x = c < 2 ? P.x[k][c] : 0.0, v = c < 2 ? P.v[k][c] : 0.0, a = c < 2 ? P.a[k][c] : 0.0,
+                   xl = c < 2 ? P.xList[k][c] : 0.0;
+      wrong += points->GetComponent(i, c) != x;
+      wrong += pd->GetArray("velocity")->GetComponent(i, c) != v;
+      wrong += pd->GetArray("acceleration")->GetComponent(i, c) != a;
+      wrong += pd->GetArray("list_build_position")->GetComponent(i, c) != xl;
+    }
+  }
+  BOOST_TEST(wrong == 0u);
+
+  vtkNew<PlaneVectorArray> view;
+  view->View(reinterpret_cast<const double*>(P.v.data()), static_cast<vtkIdType>(n));
+  BOOST_TEST(view->GetNumberOfTuples() == static_cast<vtkIdType>(n));
+  BOOST_TEST(view->GetNumberOfComponents() == 3);
+  const double before = view->GetComponent(7, 1);
+  BOOST_TEST(before == P.v[7][1]);
+  view->GlobalWarningDisplayOff();
+  view->SetComponent(7, 1, 123.0);  // refused: the particles' storage is never written
+  view->GlobalWarningDisplayOn();
+  BOOST_TEST(P.v[7][1] == before);
+  vtkSmartPointer<vtkDataArray> copy = vtk::TakeSmartPointer(view->NewInstance());
+  BOOST_TEST(vtkDoubleArray::SafeDownCast(copy) != nullptr);
+  copy->DeepCopy(view);
+  BOOST_TEST(copy->GetNumberOfTuples() == static_cast<vtkIdType>(n));
+  BOOST_TEST(copy->GetComponent(n - 1, 0) == P.v[n - 1][0]);
+  BOOST_TEST(copy->GetComponent(n - 1, 2) == 0.0);
+}
 
 BOOST_AUTO_TEST_CASE(vtp_round_trip_keeps_count_arrays_and_values) {
   const auto dir = test::scratchDir("vtp");
