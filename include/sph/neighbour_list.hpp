@@ -109,8 +109,12 @@ class NeighbourList {
     if (walls) wallBegin_.resize(n);
     else std::vector<std::uint32_t>().swap(wallBegin_);
     const Real radius2 = radius * radius;
-    buildChunks(chunks_, n, [&](std::size_t i, std::vector<std::uint32_t>& list, std::size_t used,
-                                typename HashGrid<D>::Stencil& stencil) {
+    const auto bound = [&](std::size_t i, typename HashGrid<D>::Stencil& stencil) {
+      grid.updateStencil(x[i], stencil);
+      return candidates(stencil, walls && i < fluidCount);
+    };
+    buildChunks(chunks_, n, bound, [&](std::size_t i, std::vector<std::uint32_t>& list, std::size_t used,
+                                       typename HashGrid<D>::Stencil& stencil) {
       const std::size_t start = used;
       const Vec<D> xi = x[i];
       grid.updateStencil(xi, stencil);
@@ -131,8 +135,15 @@ class NeighbourList {
   // rows appended to the thread's buffer: fill = row(i, buffer, fill,
   // stencil) for each particle i of the chunk, in order, begin_[i] the fill
   // before it.
-  template <class Buffer, class Row>
-  void buildChunks(std::vector<Buffer>& buffers, std::size_t n, Row&& row) {
+  //
+  // A buffer's first build reserves the sum of bound(i, stencil), an upper
+  // bound of particle i's entries, over its chunk: grown a quarter at a
+  // time instead, the buffer was copied a dozen times, and each copy held
+  // the old buffer and the new at once, twice the list's memory at the
+  // run's peak (70 bytes per particle in 2D). The part of the bound never
+  // filled is never written, so it takes no memory (grow()).
+  template <class Buffer, class Bound, class Row>
+  void buildChunks(std::vector<Buffer>& buffers, std::size_t n, Bound&& bound, Row&& row) {
     const auto threads = static_cast<std::size_t>(omp_get_max_threads());
     if (buffers.size() < threads) buffers.resize(threads);
     if (used_.size() < threads) used_.resize(threads);
@@ -147,6 +158,11 @@ class NeighbourList {
       Buffer& buffer = buffers[t];
       std::size_t used = 0;
       typename HashGrid<D>::Stencil stencil;
+      if (buffer.capacity() == 0) {
+        std::size_t entries = 0;
+        for (std::size_t i = lo; i < hi; ++i) entries += bound(i, stencil);
+        buffer.reserve(entries + kAhead + 64);
+      }
       for (std::size_t i = lo; i < hi; ++i) {
         begin_[i] = static_cast<std::uint32_t>(used);
         used = row(i, buffer, used, stencil);
@@ -167,16 +183,17 @@ class NeighbourList {
   void buildPacked(const HashGrid<D>& grid, const std::vector<Vec<D>>& x, Real radius2, std::size_t fluidCount,
                    std::size_t n, bool walls) {
     std::vector<std::uint32_t>().swap(wallBegin_);
-    buildChunks(packedChunks_, n, [&](std::size_t i, std::vector<std::uint8_t>& bytes, std::size_t used,
-                                      typename HashGrid<D>::Stencil& stencil) {
+    // A particle's bits fill whole bytes, 16 more for the 8-byte writes.
+    const auto bound = [&](std::size_t i, typename HashGrid<D>::Stencil& stencil) {
+      grid.updateStencil(x[i], stencil);
+      return candidates(stencil, walls && i < fluidCount) / 8 + 1;
+    };
+    buildChunks(packedChunks_, n, bound, [&](std::size_t i, std::vector<std::uint8_t>& bytes, std::size_t used,
+                                             typename HashGrid<D>::Stencil& stencil) {
       const Vec<D> xi = x[i];
       grid.updateStencil(xi, stencil);
       const bool wallRanges = walls && i < fluidCount;
-      std::size_t candidates = 0;
-      for (int s = 0; s < stencil.count; ++s) candidates += stencil.end[s] - stencil.begin[s];
-      if (wallRanges)
-        for (int s = 0; s < stencil.wallCount; ++s) candidates += stencil.wallEnd[s] - stencil.wallBegin[s];
-      const std::size_t need = used + candidates / 8 + 16;
+      const std::size_t need = used + candidates(stencil, wallRanges) / 8 + 16;
       if (need > bytes.size()) grow(bytes, need);
       BitWriter out{bytes.data() + used};
       packBits(out, i, xi, x, radius2, stencil.begin, stencil.end, stencil.count);
@@ -269,6 +286,16 @@ class NeighbourList {
     return used;
   }
 
+  // The particles a stencil's ranges hold (the wall ranges too if asked):
+  // every candidate a row scans.
+  static std::size_t candidates(const typename HashGrid<D>::Stencil& stencil, bool wallRanges) {
+    std::size_t c = 0;
+    for (int s = 0; s < stencil.count; ++s) c += stencil.end[s] - stencil.begin[s];
+    if (wallRanges)
+      for (int s = 0; s < stencil.wallCount; ++s) c += stencil.wallEnd[s] - stencil.wallBegin[s];
+    return c;
+  }
+
   // Append to list[used...] the neighbours of xi in the particle ranges
   // [begin[s], end[s]); returns the new fill. Branch-free: write always,
   // advance only for a neighbour.
@@ -305,9 +332,9 @@ class NeighbourList {
   // of a run). So a steady run does not reallocate at every build, and the
   // capacity it never fills is never written: its memory pages are never
   // touched, and take no memory.
+  static constexpr std::size_t kAhead = 4096;
   template <class T>
   static void grow(std::vector<T>& list, std::size_t need) {
-    constexpr std::size_t kAhead = 4096;
     if (need + kAhead > list.capacity()) list.reserve(need + kAhead + need / 4);
     list.resize(need + kAhead);
   }
@@ -386,11 +413,13 @@ class NeighbourList {
     return total;
   }
 
+  // The buffers count by their size, the part ever written: the capacity
+  // beyond it is reserved, never touched, and takes no memory (grow()).
   std::size_t bytesAllocated() const {
     std::size_t b = (begin_.capacity() + wallBegin_.capacity()) * sizeof(std::uint32_t) +
                     chunkStart_.capacity() * sizeof(std::size_t);
-    for (const auto& c : chunks_) b += c.capacity() * sizeof(std::uint32_t);
-    for (const auto& c : packedChunks_) b += c.capacity();
+    for (const auto& c : chunks_) b += c.size() * sizeof(std::uint32_t);
+    for (const auto& c : packedChunks_) b += c.size();
     return b;
   }
 
