@@ -3,10 +3,10 @@
 // Space is cut into cubic cells of edge `cellSize` (the kernel support), so
 // every neighbour of a particle lies in its own cell or one of the 3^D - 1
 // adjacent cells. Cell coordinates c = floor(x / cellSize) are hashed into a
-// power-of-two table of about 2N buckets (spatial hashing as in Teschner et
-// al. 2003, "Optimized spatial hashing for collision detection of deformable
-// objects"), so the domain needs no bounds and memory grows with N, not with
-// volume. The hash is the row-major index of the cell in the particles'
+// power-of-two table of about 2N buckets, or of the bounding box's cells when
+// they are fewer (spatial hashing as in Teschner et al. 2003, "Optimized
+// spatial hashing for collision detection of deformable objects"), so the
+// domain needs no bounds and memory grows with N, not with volume. The hash is the row-major index of the cell in the particles'
 // bounding box, modulo the table size:
 //   bucket = (c0 - m0 + 1) + (c1 - m1 + 1) s1 + (c2 - m2 + 1) s2   mod T
 // (m: lowest cell, s: row and plane strides of the box). Unlike the xor hash
@@ -69,7 +69,8 @@ class HashGrid {
     ownedCount = std::min(ownedCount, n);
     fluidCount = std::min(fluidCount, ownedCount);
     ghostFluidEnd = std::clamp(ghostFluidEnd, ownedCount, n);
-    const std::size_t tableSize = tableSizeFor(n);
+    setStrides(x);
+    const std::size_t tableSize = tableSizeFor(n, boxCells_);
     std::uint32_t tables = 1;
     auto table = [&](bool present) { return present ? static_cast<std::uint32_t>(tableSize) * tables++ : 0u; };
     wallOffset_ = table(fluidCount < ownedCount);
@@ -79,7 +80,6 @@ class HashGrid {
     mask_ = tableSize - 1;
     bucket_.resize(n);
     order_.resize(n);
-    setStrides(x);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i)
       bucket_[i] = bucketOf(cellOf(x[i])) + (i < fluidCount      ? 0
@@ -126,9 +126,15 @@ class HashGrid {
   }
 
  private:
-  static std::size_t tableSizeFor(std::size_t n) {
+  // The table: a power of two, at least 2N buckets or, if fewer, at least
+  // the box's cells (then no two cells share a bucket, and each bucket is
+  // the cell's row-major index in the box, as with 2N: the same order). The
+  // box's cells are far fewer than 2N when the particles fill it (a tenth
+  // of N when a cell holds ten), and each kind of particle has a table.
+  static std::size_t tableSizeFor(std::size_t n, double boxCells) {
+    const double need = std::min(2.0 * static_cast<double>(n), boxCells);
     std::size_t t = 64;
-    while (t < 2 * n) t *= 2;
+    while (static_cast<double>(t) < need) t *= 2;
     return t;
   }
 
@@ -195,9 +201,11 @@ class HashGrid {
     const IVec<D> cLo = cellOf(Eigen::Map<const Vec<D>>(lo)), cHi = cellOf(Eigen::Map<const Vec<D>>(hi));
     origin_ = cLo - IVec<D>::Ones();
     std::uint64_t stride = 1;
+    boxCells_ = 1;
     for (int d = 0; d < D; ++d) {
       stride_[d] = stride;
       stride *= static_cast<std::uint64_t>(cHi[d] - cLo[d] + 3);
+      boxCells_ *= static_cast<double>(cHi[d] - cLo[d] + 3);  // exact below 2^53, never wraps
     }
   }
 
@@ -212,6 +220,7 @@ class HashGrid {
   IVec<D> stencil_[stencilSize];  // cell offsets {-1, 0, 1}^D, x fastest
   IVec<D> origin_ = IVec<D>::Zero();
   std::uint64_t stride_[D] = {};
+  double boxCells_ = 0;  // cells of the bounding box, margins included
   std::uint64_t mask_ = 0;
   std::uint32_t wallOffset_ = 0;       // first wall bucket (0: no walls)
   std::uint32_t ghostOffset_ = 0;      // first bucket of the ghosts of fluid (0: none)
