@@ -29,13 +29,15 @@
 // copies, on every rank at the same points of a step.
 //
 // permute() reorders the state and stage fields in one parallel pass,
-// through one scratch array per value type (vectors, scalars, ids, kinds,
-// matrices), kept between calls so the step loop never allocates: a field is
-// gathered into the scratch of its type and swapped with it, and its old
-// buffer is the scratch of the next field of that type. (A shadow buffer per
-// field cost 81 bytes per particle in 2D at full water physics; this costs
-// 33.) Rates and derived fields are stale after it until the model evaluates
-// again.
+// through one scratch array of vectors, kept between calls so the step loop
+// never allocates: a vector field is gathered into it and swapped with it,
+// so its old buffer is the scratch of the next vector field; a narrower
+// field (scalars, ids, kinds) is gathered into the scratch's bytes and
+// copied back. (A shadow buffer per field cost 81 bytes per particle in 2D
+// at full water physics, a scratch array per value type 33; this costs 16,
+// 24 in 3D.) Matrices (CSPM's, carried by a rebuild) have a scratch of their
+// own. Rates and derived fields are stale after it until the model
+// evaluates again.
 #pragma once
 
 #include "sph/fields.hpp"
@@ -43,6 +45,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -351,7 +354,7 @@ struct Particles : FieldArrays<D> {
 
   // Reorder the state and stage fields so that new particle k is old
   // particle order[k]: one parallel region, one gather loop per field into
-  // the scratch of its type, then a swap. The grid sorts walls after the
+  // the scratch, then a swap (vectors) or a copy back (narrower fields). The grid sorts walls after the
   // fluid and ghosts after the owned particles, so the ranges do not change. The
   // ghosts' sources follow their particles and are then refreshed (all
   // fields: the non-permuted ones of a ghost were never its own).
@@ -359,7 +362,7 @@ struct Particles : FieldArrays<D> {
   // carryAll: the rates and derived fields follow their particles too (the
   // neighbour list's rebuilds with a skin, scene.hpp: they happen between
   // a field's computation and its use). They go through the same scratch
-  // arrays (the matrices of CSPM: one more, grown once).
+  // (the matrices of CSPM: one more, grown once).
   void permute(const std::vector<std::uint32_t>& order, bool carryAll = false) {
     gather(permuted_, order);
     // (id and kind, the integer fields, are state: always permuted.)
@@ -386,48 +389,55 @@ struct Particles : FieldArrays<D> {
     const auto bytes = [](const auto& array) {
       return array.capacity() * sizeof(typename std::decay_t<decltype(array)>::value_type);
     };
-    return FieldArrays<D>::bytesAllocated() + bytes(scratch_.vector) + bytes(scratch_.scalar) + bytes(scratch_.id) +
-           bytes(scratch_.kind) + bytes(scratch_.matrix) +
+    return FieldArrays<D>::bytesAllocated() + bytes(scratch_.vector) + bytes(scratch_.matrix) +
            (ghostSource_.capacity() + sourceShadow_.capacity() + newIndex_.capacity()) * sizeof(std::uint32_t) +
            (ghostShift_.capacity() + shiftShadow_.capacity()) * sizeof(Vec<D>);
   }
 
  private:
   // Gather the fields in `fields` (with order[k] the old index of new
-  // particle k), each into the scratch of its type, and swap it in.
+  // particle k): a vector (or matrix) field into the scratch of its type,
+  // swapped in; a narrower one into the vector scratch's bytes, copied back.
   void gather(FieldSet fields, const std::vector<std::uint32_t>& order) {
     const std::size_t n = totalSize();
     if (fields == 0) return;
+    growTo(scratch_.vector, n);
     this->forEachField([&](const FieldInfo& info, auto& field) {
-      if ((fields >> info.id) & 1u) growTo(scratchFor(field), n);
+      using T = typename std::decay_t<decltype(field)>::value_type;
+      if constexpr (std::is_same_v<T, Mat<D>>)
+        if ((fields >> info.id) & 1u) growTo(scratch_.matrix, n);
     });
 #pragma omp parallel if (n >= kMinParallelSize)
     this->forEachField([&](const FieldInfo& info, auto& field) {
       if (((fields >> info.id) & 1u) == 0) return;
-      auto& scratch = scratchFor(field);
+      using T = typename std::decay_t<decltype(field)>::value_type;
+      if constexpr (std::is_same_v<T, Vec<D>> || std::is_same_v<T, Mat<D>>) {
+        auto& scratch = scratchFor(field);
 #pragma omp for schedule(static)
-      for (std::size_t k = 0; k < n; ++k) scratch[k] = field[order[k]];
+        for (std::size_t k = 0; k < n; ++k) scratch[k] = field[order[k]];
 #pragma omp single
-      field.swap(scratch);
+        field.swap(scratch);
+      } else {
+        static_assert(std::is_trivially_copyable_v<T> && sizeof(T) <= sizeof(Vec<D>));
+        auto* bytes = reinterpret_cast<unsigned char*>(scratch_.vector.data());
+#pragma omp for schedule(static)
+        for (std::size_t k = 0; k < n; ++k) std::memcpy(bytes + k * sizeof(T), &field[order[k]], sizeof(T));
+#pragma omp for schedule(static)
+        for (std::size_t k = 0; k < n; ++k) std::memcpy(&field[k], bytes + k * sizeof(T), sizeof(T));
+      }
     });
   }
 
-  // One scratch array per value type of the fields.
+  // The scratch arrays: vectors for every field but the matrices.
   struct Scratch {
     std::vector<Vec<D>> vector;
-    std::vector<Real> scalar;
-    std::vector<std::int64_t> id;
-    std::vector<std::uint8_t> kind;
     std::vector<Mat<D>> matrix;
   };
   std::vector<Vec<D>>& scratchFor(const std::vector<Vec<D>>&) { return scratch_.vector; }
-  std::vector<Real>& scratchFor(const std::vector<Real>&) { return scratch_.scalar; }
-  std::vector<std::int64_t>& scratchFor(const std::vector<std::int64_t>&) { return scratch_.id; }
-  std::vector<std::uint8_t>& scratchFor(const std::vector<std::uint8_t>&) { return scratch_.kind; }
   std::vector<Mat<D>>& scratchFor(const std::vector<Mat<D>>&) { return scratch_.matrix; }
 
-  // The permuted fields (allocated, with a permuted role), and the scratch
-  // arrays of their types sized now (the others are released).
+  // The permuted fields (allocated, with a permuted role), and the vector
+  // scratch sized now (the matrices' is released: a rebuild grows it).
   void setPermuted() {
     permuted_ = 0;
     for (const FieldInfo& info : kFieldTable)
@@ -440,13 +450,8 @@ struct Particles : FieldArrays<D> {
     // it must travel with its particle to the snapshot after the sort.
     if ((allocated_ >> kFieldDrho) & 1u) permuted_ |= fieldBit(kFieldDrho);
     scratch_ = Scratch();
-    const std::size_t n = size();
-    this->forEachField([&](const FieldInfo& info, auto& field) {
-      if (((permuted_ >> info.id) & 1u) == 0) return;
-      auto& scratch = scratchFor(field);
-      scratch.resize(n);
-      scratch.shrink_to_fit();
-    });
+    scratch_.vector.resize(size());
+    scratch_.vector.shrink_to_fit();
   }
 
   // Resize to n; when that needs more room, reserve a quarter of the ghosts
