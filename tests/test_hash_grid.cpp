@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 #include <vector>
@@ -151,6 +152,28 @@ BOOST_AUTO_TEST_CASE(sparse_points_with_hash_collisions_3d) {
 
 // One list rebuilt with thread counts going up and down (its per-thread
 // buffers and chunk bounds are reused), around the serial threshold too.
+// A box the particles fill: its cells (a tenth of N here: about ten
+// particles a cell, plus the margins) are far fewer than 2N, and the table
+// has no more buckets than a power of two above them, not the 2-4 N of a
+// sparse set: under 3 bytes per particle for the bucket starts, 11 with the
+// bucket and order arrays (2N buckets would be 8-16 for the starts alone).
+// It stays collision-free, so the pairs are the brute force's.
+BOOST_AUTO_TEST_CASE(table_of_a_filled_box_has_about_its_cells) {
+  for (const std::size_t n : {20000u, 60000u}) {
+    Particles<2> P = particlesAt<2>(uniform<2>(n, 0, 1, 9));
+    const Real radius = std::sqrt(10.0 / static_cast<Real>(n));  // ten particles per cell
+    HashGrid<2> grid(radius);
+    grid.build(P.x);
+    const double bytes = static_cast<double>(grid.bytesAllocated()) / static_cast<double>(n);
+    const double cells = std::pow(std::ceil(1 / radius) + 3, 2);
+    BOOST_TEST_CONTEXT("n = " << n << ", box cells " << cells << ", grid " << bytes << " B/p") {
+      BOOST_TEST(cells < 0.15 * static_cast<double>(n));
+      BOOST_TEST(bytes < 11.0);
+    }
+  }
+  checkAgainstBruteForce<2>(uniform<2>(3000, 0, 1, 4), std::sqrt(10.0 / 3000));
+}
+
 BOOST_AUTO_TEST_CASE(neighbour_list_survives_changing_thread_counts) {
   const int before = omp_get_max_threads();
   NeighbourList<2> list;
