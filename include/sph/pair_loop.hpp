@@ -45,6 +45,7 @@
 #pragma once
 
 #include "sph/neighbour_list.hpp"
+#include "sph/pair_scratch.hpp"
 #include "sph/particles.hpp"
 #include "sph/terms/term_bits.hpp"
 
@@ -168,37 +169,6 @@ template <int D, class Kernel, class Correction = NoGradientCorrection>
   }
   return c;
 }
-
-// Per-particle values the evaluators read at every pair, formed once per
-// particle before the pairs in the loop's parallel region (every particle,
-// ghosts included), so that no pair divides for them: p/rho^2 of the
-// pressure term (symmetric_pressure.hpp) and the volume m/rho of the
-// density diffusion (density_diffusion.hpp). A null array is not formed.
-// The arrays are the pass's, sized to the particles (PairScratch::fit).
-template <int D>
-struct ParticlePrologue {
-  Real* pOverRho2 = nullptr;
-  Real* volume = nullptr;
-  bool active() const { return pOverRho2 || volume; }
-  void operator()(std::size_t i, const Particles<D>& P) const {
-    if (pOverRho2) pOverRho2[i] = P.p[i] / (P.rho[i] * P.rho[i]);
-    if (volume) volume[i] = P.m[i] / P.rho[i];
-  }
-};
-
-// The arrays of a ParticlePrologue, kept by a pass between its runs (so the
-// step loop does not allocate once they have grown to the particle count).
-struct PairScratch {
-  std::vector<Real> pOverRho2, volume;
-  // The prologue of a run over n particles (ghosts included): the arrays
-  // asked for, sized to n.
-  template <int D>
-  ParticlePrologue<D> fit(std::size_t n, bool pressure, bool diffusion) {
-    if (pressure && pOverRho2.size() < n) pOverRho2.resize(n);
-    if (diffusion && volume.size() < n) volume.resize(n);
-    return {pressure ? pOverRho2.data() : nullptr, diffusion ? volume.data() : nullptr};
-  }
-};
 
 // Which parts of the loop run, decided per evaluation.
 struct PairLoopParts {

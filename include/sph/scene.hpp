@@ -251,7 +251,8 @@ class Scene {
   // collective).
   std::size_t bytesAllocated() const {
     return static_cast<std::size_t>(mpi::allSum(
-        comm_, static_cast<std::int64_t>(P_.bytesAllocated() + grid_.bytesAllocated() + neighbours_.bytesAllocated())));
+        comm_, static_cast<std::int64_t>(P_.bytesAllocated() + grid_.bytesAllocated() + neighbours_.bytesAllocated() +
+                                               model_.bytesAllocated())));
   }
 
  private:

@@ -23,6 +23,7 @@
 #pragma once
 
 #include "sph/models/pass.hpp"
+#include "sph/pair_scratch.hpp"
 #include "sph/terms/equation_of_state_fwd.hpp"
 
 #include <memory>
@@ -129,6 +130,8 @@ class Model {
   unsigned executedTerms() const { return executed_ | executedAfterStep_; }
   // What the kernel corrections did so far (step_context.hpp).
   const CorrectionCounts& correctionCounts() const { return counts_; }
+  // The passes' shared per-particle arrays (pair_scratch.hpp) [bytes].
+  std::size_t bytesAllocated() const { return pairScratch_.bytesAllocated(); }
 
   // The potential energy of the conservative body forces (gravity, the
   // star's attraction), for energy.csv.
@@ -157,6 +160,7 @@ class Model {
   unsigned runPasses(const PassList<D>& passes, Particles<D>& P, const NeighbourList<D>& neighbours,
                      StepContext ctx) const {
     ctx.counts = &counts_;
+    ctx.pairScratch = &pairScratch_;
     unsigned ran = 0;
     for (const auto& pass : passes) {
       ran |= pass->run(P, neighbours, ctx);
@@ -178,6 +182,7 @@ class Model {
   mutable unsigned executed_ = 0, executedAfterStep_ = 0, densityRateBits_ = 0;
   mutable bool evaluated_ = false;
   mutable CorrectionCounts counts_;
+  mutable PairScratch pairScratch_;  // one set of per-particle pair arrays for all the passes
 };
 
 extern template class Model<2>;
