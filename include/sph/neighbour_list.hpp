@@ -113,7 +113,7 @@ class NeighbourList {
       grid.updateStencil(x[i], stencil);
       return candidates(stencil, walls && i < fluidCount);
     };
-    buildChunks(chunks_, n, bound, [&](std::size_t i, std::vector<std::uint32_t>& list, std::size_t used,
+    buildChunks(chunks_, n, kListShare, bound, [&](std::size_t i, std::vector<std::uint32_t>& list, std::size_t used,
                                        typename HashGrid<D>::Stencil& stencil) {
       const std::size_t start = used;
       const Vec<D> xi = x[i];
@@ -136,14 +136,17 @@ class NeighbourList {
   // stencil) for each particle i of the chunk, in order, begin_[i] the fill
   // before it.
   //
-  // A buffer's first build reserves the sum of bound(i, stencil), an upper
-  // bound of particle i's entries, over its chunk: grown a quarter at a
-  // time instead, the buffer was copied a dozen times, and each copy held
-  // the old buffer and the new at once, twice the list's memory at the
-  // run's peak (70 bytes per particle in 2D). The part of the bound never
-  // filled is never written, so it takes no memory (grow()).
+  // A buffer's first build reserves `share` of the sum of bound(i,
+  // stencil), its particles' candidates, over its chunk: about what it will
+  // fill, a quarter more. Grown a quarter at a time from nothing instead,
+  // the buffer was copied a dozen times, and each copy held the old buffer
+  // and the new at once, twice the list's memory at the run's peak (70
+  // bytes per particle in 2D). The part never filled is not written and
+  // takes no memory (grow()); reserving every candidate would take address
+  // space, 3 (2D) to 6 (3D) times the list's, which an address-space limit
+  // (ulimit -v, strict overcommit) refuses.
   template <class Buffer, class Bound, class Row>
-  void buildChunks(std::vector<Buffer>& buffers, std::size_t n, Bound&& bound, Row&& row) {
+  void buildChunks(std::vector<Buffer>& buffers, std::size_t n, double share, Bound&& bound, Row&& row) {
     const auto threads = static_cast<std::size_t>(omp_get_max_threads());
     if (buffers.size() < threads) buffers.resize(threads);
     if (used_.size() < threads) used_.resize(threads);
@@ -161,7 +164,7 @@ class NeighbourList {
       if (buffer.capacity() == 0) {
         std::size_t entries = 0;
         for (std::size_t i = lo; i < hi; ++i) entries += bound(i, stencil);
-        buffer.reserve(entries + kAhead + 64);
+        buffer.reserve(static_cast<std::size_t>(share * static_cast<double>(entries)) + kAhead + 64);
       }
       for (std::size_t i = lo; i < hi; ++i) {
         begin_[i] = static_cast<std::uint32_t>(used);
@@ -188,7 +191,7 @@ class NeighbourList {
       grid.updateStencil(x[i], stencil);
       return candidates(stencil, walls && i < fluidCount) / 8 + 1;
     };
-    buildChunks(packedChunks_, n, bound, [&](std::size_t i, std::vector<std::uint8_t>& bytes, std::size_t used,
+    buildChunks(packedChunks_, n, 1.0, bound, [&](std::size_t i, std::vector<std::uint8_t>& bytes, std::size_t used,
                                              typename HashGrid<D>::Stencil& stencil) {
       const Vec<D> xi = x[i];
       grid.updateStencil(xi, stencil);
@@ -333,6 +336,12 @@ class NeighbourList {
   // capacity it never fills is never written: its memory pages are never
   // touched, and take no memory.
   static constexpr std::size_t kAhead = 4096;
+  // The share of a particle's candidates (the 3^D cells of edge R around
+  // it) closer than R, in a uniform fluid: the disc's pi R^2 over 9 R^2,
+  // the ball's 4/3 pi R^3 over 27 R^3; a quarter more for what a list
+  // reserves at its first build (buildChunks; packed, one bit per
+  // candidate, reserves them all).
+  static constexpr double kListShare = 1.25 * (D == 2 ? 3.14159265358979 / 9 : 4 * 3.14159265358979 / 81);
   template <class T>
   static void grow(std::vector<T>& list, std::size_t need) {
     if (need + kAhead > list.capacity()) list.reserve(need + kAhead + need / 4);

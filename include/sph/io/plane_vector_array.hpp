@@ -10,8 +10,9 @@
 // vtkGenericDataArray, documented in vtkGenericDataArray.h), so the view
 // costs a block of 32 KiB, not a copy.
 //
-// Read-only: the setters and allocation refuse (the writer never calls
-// them). NewInstance() gives a plain vtkDoubleArray, so a filter that copies
+// Read-only: the setters refuse, and so does growing it (the writer never
+// calls them; growing throws std::bad_alloc, VTK's answer to a failed
+// allocation). NewInstance() gives a plain vtkDoubleArray, so a filter that copies
 // the array gets an ordinary one. The field must outlive the view and not
 // change while VTK reads it (the writer's polydata dies before the step
 // goes on).
@@ -38,10 +39,11 @@ class PlaneVectorArray : public vtkGenericDataArray<PlaneVectorArray, double> {
   // Show `tuples` 2D vectors starting at xy (x0, y0, x1, y1, ...).
   void View(const double* xy, vtkIdType tuples) {
     xy_ = xy;
-    this->NumberOfComponents = 3;
+    this->SetNumberOfComponents(3);  // (also sizes GetTuple()'s buffer)
     this->Size = 3 * tuples;
     this->MaxId = this->Size - 1;
     this->DataChanged();
+    this->Modified();
   }
 
   double GetValue(vtkIdType valueIdx) const {
