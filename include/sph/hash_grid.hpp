@@ -6,8 +6,9 @@
 // power-of-two table of about 2N buckets, or of the bounding box's cells when
 // they are fewer (spatial hashing as in Teschner et al. 2003, "Optimized
 // spatial hashing for collision detection of deformable objects"), so the
-// domain needs no bounds and memory grows with N, not with volume. The hash is the row-major index of the cell in the particles'
-// bounding box, modulo the table size:
+// domain needs no bounds and memory grows with N, not with volume. The hash
+// is the row-major index of the cell in the particles' bounding box, modulo
+// the table size:
 //   bucket = (c0 - m0 + 1) + (c1 - m1 + 1) s1 + (c2 - m2 + 1) s2   mod T
 // (m: lowest cell, s: row and plane strides of the box). Unlike the xor hash
 // it keeps the three cells of a stencil row in consecutive buckets, so their

@@ -341,7 +341,7 @@ class NeighbourList {
   // the ball's 4/3 pi R^3 over 27 R^3; a quarter more for what a list
   // reserves at its first build (buildChunks; packed, one bit per
   // candidate, reserves them all).
-  static constexpr double kListShare = 1.25 * (D == 2 ? 3.14159265358979 / 9 : 4 * 3.14159265358979 / 81);
+  static constexpr double kListShare = 1.25 * (D == 2 ? M_PI / 9 : 4 * M_PI / 81);
   template <class T>
   static void grow(std::vector<T>& list, std::size_t need) {
     if (need + kAhead > list.capacity()) list.reserve(need + kAhead + need / 4);

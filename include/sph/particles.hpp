@@ -354,8 +354,9 @@ struct Particles : FieldArrays<D> {
 
   // Reorder the state and stage fields so that new particle k is old
   // particle order[k]: one parallel region, one gather loop per field into
-  // the scratch, then a swap (vectors) or a copy back (narrower fields). The grid sorts walls after the
-  // fluid and ghosts after the owned particles, so the ranges do not change. The
+  // the scratch, then a swap (vectors) or a copy back (narrower fields). The
+  // grid sorts walls after the fluid and ghosts after the owned particles,
+  // so the ranges do not change. The
   // ghosts' sources follow their particles and are then refreshed (all
   // fields: the non-permuted ones of a ghost were never its own).
   //
