@@ -29,8 +29,8 @@ namespace sph::test {
 template <class Term>
 struct MagnitudeOf {
   static constexpr unsigned writes = Term::writes;
-  static_assert((Term::writes & ~(rates::kAcceleration | rates::kDensityRate)) == 0,
-                "MagnitudeOf sums the acceleration and the density rate only");
+  static_assert((Term::writes & ~(rates::kAcceleration | rates::kDensityRate | rates::kXsph)) == 0,
+                "MagnitudeOf sums the acceleration, the density rate and the XSPH sum only");
   Term term;
 
   unsigned bits() const { return packBits(std::make_tuple(term)); }
@@ -41,6 +41,7 @@ struct MagnitudeOf {
     term.add(c, P, one);
     r.a += one.a.cwiseAbs();
     r.drho += std::abs(one.drho);
+    r.xsph += one.xsph.cwiseAbs();
   }
 };
 

@@ -12,6 +12,7 @@
 #include "sph/passes/force_blocks.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
 #include "sph/terms/symmetric_pressure.hpp"
+#include "sph/terms/xsph.hpp"
 #include "reordered_sum_bound.hpp"
 #include "test_support.hpp"
 
@@ -187,20 +188,26 @@ BOOST_AUTO_TEST_CASE(adaptive_time_step_names_its_criterion) {
 
 // The blocks' accelerations against the scalar pair loop's (pair_loop.hpp
 // with the force pass's packs: symmetric pressure, then Monaghan's
-// viscosity), on a dam-break column after 60 steps (disordered, the list's
-// skin holding pairs beyond the support, approaching and receding pairs),
-// with dummy and dynamic walls, with beta 0 and 1, in 2D and 3D. Tolerance:
-// the blocks add the same terms in another order, so each component is within
-// 4 n eps sum_j |t_j| of the scalar loop's (reordered_sum_bound.hpp; the
-// largest difference is printed against it). A block that dropped the
-// viscosity, or counted a padding lane (a repeat of the block's first
-// pair), would be off by a whole term. (A pair beyond the support adds an
-// exact 0 either way: the kernel's gradient is 0 there.) (The pass uses the blocks only where they pay, with AVX2 or
-// AVX-512; the function is compared here on every build.)
+// viscosity, and XSPH's sum when on), on a dam-break column after 60 steps
+// (disordered, the list's skin holding pairs beyond the support, approaching
+// and receding pairs), with dummy and dynamic walls, with beta 0 and 1, with
+// XSPH off and on, in 2D and 3D. Tolerance: the blocks add the same terms in
+// another order, so each component is within 4 n eps sum_j |t_j| of the
+// scalar loop's (reordered_sum_bound.hpp; the largest difference is printed
+// against it). A block that dropped the viscosity, or counted a padding lane
+// (a repeat of the block's first pair), would be off by a whole term; one
+// that left XSPH's sum out, or took v_i - v_j for v_j - v_i, by all of it.
+// (A pair beyond the support adds an exact 0 either way: the kernel and its
+// gradient are 0 there.) (The pass uses the blocks only where they pay, with
+// AVX2 or AVX-512; the function is compared here on every build.)
 template <int D>
 void checkForceBlocks() {
-  struct StoreAcceleration {
-    void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const { P.a[i] = r.a; }
+  struct StoreRates {
+    std::vector<Vec<D>>* xsph;
+    void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const {
+      P.a[i] = r.a;
+      (*xsph)[i] = r.xsph;
+    }
   };
   struct NoRates {
     void operator()(std::size_t, Particles<D>&, const PairRates<D>&) const {}
@@ -210,46 +217,69 @@ void checkForceBlocks() {
     const Scene<D> s = test::settled<D>(c, 60);
     const Particles<D>& P = s.particles();
     const WendlandC2<D> kernel(c.h);
-    for (const Real beta : {0.0, 1.0}) {
-      PairScratch scratch;
-      const ParticlePrologue<D> prologue = scratch.fit<D>(P.totalSize(), true, false);
-      const SymmetricPressure pressure{false, prologue.pOverRho2};
-      const MonaghanViscosity<WendlandC2<D>> viscosity{kernel, 0.02, beta};
-      const auto wallPairs = std::make_tuple(pressure, MonaghanViscosity<WendlandC2<D>, true>{kernel, 0.02, beta});
-      const PairLoopParts parts{true, false};
-      Particles<D> blocks = P, scalar = P;
-      for (auto& a : blocks.a) a.setConstant(-1);
-      for (auto& a : scalar.a) a.setConstant(-2);
-      Particles<D> magnitude = P;
-      const auto fluidPairs = std::make_tuple(pressure, viscosity);
-      auto loop = [&](Particles<D>& Q, const auto& fluid, const auto& walls, const auto& fluidRow) {
-        runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, walls, std::tuple<>{}, StoreAcceleration{},
-                    NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow);
-      };
-      loop(blocks, fluidPairs, wallPairs,
-           PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
-      loop(scalar, fluidPairs, wallPairs, PairByPair{});
-      loop(magnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{});
-      std::size_t beyond = 0, differ = 0, loaded = 0;
-      Real worst = 0;  // the largest difference over its bound
-      for (std::size_t i = 0; i < P.fluidCount(); ++i) {
-        const typename NeighbourList<D>::Row row = s.neighbours().row(i);
-        for (int d = 0; d < D; ++d) {
-          const Real bound = test::reorderedSumBound(row.end - row.begin, magnitude.a[i][d]);
-          const Real difference = std::abs(blocks.a[i][d] - scalar.a[i][d]);
+    for (const Real beta : {0.0, 1.0})
+      for (const bool xsph : {false, true}) {
+        PairScratch scratch;
+        const ParticlePrologue<D> prologue = scratch.fit<D>(P.totalSize(), true, false);
+        const SymmetricPressure pressure{false, prologue.pOverRho2};
+        const MonaghanViscosity<WendlandC2<D>> viscosity{kernel, 0.02, beta};
+        const auto wallPairs =
+            std::make_tuple(pressure, MonaghanViscosity<WendlandC2<D>, true>{kernel, 0.02, beta});
+        const PairLoopParts parts{true, false};
+        Particles<D> blocks = P, scalar = P;
+        for (auto& a : blocks.a) a.setConstant(-1);
+        for (auto& a : scalar.a) a.setConstant(-2);
+        Particles<D> magnitude = P;
+        const std::size_t n = P.totalSize();
+        std::vector<Vec<D>> xsphBlocks(n, Vec<D>::Constant(-1)), xsphScalar(n, Vec<D>::Constant(-2)),
+            xsphMagnitude(n, Vec<D>::Zero());
+        // XSPH off: epsilon 0, an evaluator that adds nothing (as the pass's).
+        const auto fluidPairs = std::make_tuple(pressure, viscosity, Xsph<WendlandC2<D>>{kernel, xsph ? 0.5 : 0.0});
+        auto loop = [&](Particles<D>& Q, std::vector<Vec<D>>& xsphSums, const auto& fluid, const auto& walls,
+                        const auto& fluidRow) {
+          runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, walls, std::tuple<>{},
+                      StoreRates{&xsphSums}, NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow);
+        };
+        if (xsph)
+          loop(blocks, xsphBlocks, fluidPairs, wallPairs,
+               PressureViscosityRow<D, WendlandC2<D>, true>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
+        else
+          loop(blocks, xsphBlocks, fluidPairs, wallPairs,
+               PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
+        loop(scalar, xsphScalar, fluidPairs, wallPairs, PairByPair{});
+        loop(magnitude, xsphMagnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{});
+        std::size_t beyond = 0, differ = 0, loaded = 0, smoothed = 0;
+        Real worst = 0;  // the largest difference over its bound
+        auto compare = [&](std::size_t rowLength, Real blockValue, Real scalarValue, Real magnitudeValue) {
+          const Real bound = test::reorderedSumBound(rowLength, magnitudeValue);
+          const Real difference = std::abs(blockValue - scalarValue);
           beyond += !(difference <= bound);
           if (bound > 0) worst = std::max(worst, difference / bound);
+        };
+        for (std::size_t i = 0; i < P.fluidCount(); ++i) {
+          const typename NeighbourList<D>::Row row = s.neighbours().row(i);
+          const auto length = static_cast<std::size_t>(row.end - row.begin);
+          for (int d = 0; d < D; ++d) {
+            compare(length, blocks.a[i][d], scalar.a[i][d], magnitude.a[i][d]);
+            compare(length, xsphBlocks[i][d], xsphScalar[i][d], xsphMagnitude[i][d]);
+          }
+          differ += blocks.a[i] != scalar.a[i] || xsphBlocks[i] != xsphScalar[i];
+          loaded += scalar.a[i].norm() > 1;
+          smoothed += xsphScalar[i].norm() > 1e-6 * c.c0;
         }
-        differ += blocks.a[i] != scalar.a[i];
-        loaded += scalar.a[i].norm() > 1;
+        BOOST_TEST_MESSAGE(D << "D, " << boundary << ", beta " << beta << ", xsph " << xsph << ": " << differ
+                                    << " of " << P.fluidCount()
+                                    << " accelerations or XSPH sums differ in their last bits, the largest "
+                                       "difference "
+                                    << worst << " of its bound");
+        BOOST_TEST_INFO(D << "D, " << boundary << ", beta " << beta << ", xsph " << xsph);
+        BOOST_TEST(beyond == 0u);
+        BOOST_TEST(loaded > P.fluidCount() / 4);  // the accelerations are not trivially zero
+        // XSPH's sums are not trivially zero when on (the settled column
+        // still moves), and exactly zero when off.
+        if (xsph) BOOST_TEST(smoothed > P.fluidCount() / 4);
+        else BOOST_TEST(smoothed == 0u);
       }
-      BOOST_TEST_MESSAGE(D << "D, " << boundary << ", beta " << beta << ": " << differ << " of " << P.fluidCount()
-                                  << " accelerations differ in their last bits, the largest difference "
-                                  << worst << " of its bound");
-      BOOST_TEST_INFO(D << "D, " << boundary << ", beta " << beta);
-      BOOST_TEST(beyond == 0u);
-      BOOST_TEST(loaded > P.fluidCount() / 4);  // the accelerations are not trivially zero
-    }
   }
 }
 
@@ -263,15 +293,15 @@ BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
 // its optimisation, and the rules that choose the blocks. A dam-break column
 // for 150 steps with dummy and dynamic walls, leap-frog (both walks in
 // blocks), RK4 (the density rate in the force pass: the force walk stays
-// scalar) and XSPH on (the force walk stays scalar, the density rate does
-// not). The two runs add each sum in another order, so they part by
+// scalar) and XSPH on (both walks in blocks, the force row with XSPH's
+// sum). The two runs add each sum in another order, so they part by
 // round-off, which the flow then carries: every particle's x within
 // 1e-9 h, v within 1e-9 c0 and rho within 1e-9 rho0 (measured 2026-12-06:
-// at most 4e-15 h, 3e-16 c0, 5e-16 rho0; the RK4 and XSPH runs come out
-// the same bits, their force walk being scalar and the density rate's
-// last bits below rho's. With blocks that left out the viscosity and the
-// diffusion, tried: 2e-3 to 3e-3 h, and 2e-4 rho0 with the diffusion
-// alone left out).
+// at most 4e-15 h, 3e-16 c0, 5e-16 rho0; the RK4 run comes out the same
+// bits, its force walk being scalar and the density rate's last bits below
+// rho's; 2026-12-07, XSPH in the force row: 3.7e-15 h, 2.3e-16 c0, 2.3e-16
+// rho0. With blocks that left out the viscosity and the diffusion, tried:
+// 2e-3 to 3e-3 h, and 2e-4 rho0 with the diffusion alone left out).
 template <int D>
 void checkRunsWithBlocks() {
   struct Variant {

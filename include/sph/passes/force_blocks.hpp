@@ -1,17 +1,21 @@
 // The force pass's fluid-fluid pairs in SIMD blocks (pair_loop_blocks.hpp)
 // for the water physics, 2D and 3D: Wendland C2, the symmetric pressure term and
 // Monaghan's artificial viscosity, with the density rate computed apart
-// (leap-frog, symplectic Euler) and nothing else in the pack:
+// (leap-frog, symplectic Euler or summation density), and optionally XSPH:
 //
 //   a_i = - sum_j m_j (p_i/rho_i^2 + p_j/rho_j^2) grad_i W_ij         (symmetric_pressure.hpp)
 //         - sum_j m_j Pi_ij grad_i W_ij,  Pi_ij = (-alpha cbar_ij mu_ij + beta mu_ij^2) / rhobar_ij
 //           for v_ij . r_ij < 0, mu_ij = h v_ij . r_ij / (r_ij^2 + 0.01 h^2)   (monaghan_viscosity.hpp)
+//   xsph_i = sum_j (2 m_j / (rho_i + rho_j)) W_ij (v_j - v_i)          (xsph.hpp, Monaghan 1989;
+//                                                                      kXsph only)
 //
 // Each lane forms one pair's contribution, (m_j (p_i/rho_i^2 + p_j/rho_j^2)
-// + m_j Pi_ij) grad_i W_ij, and adds it to its own partial sums; the 8
-// partial sums are added at the row's end (pair_loop_blocks.hpp). So the
-// acceleration is the scalar loop's up to the order of the sum: within a
-// few n eps sum_j |term_j| (test wcsph_terms/force_blocks_match_the_scalar_loop).
+// + m_j Pi_ij) grad_i W_ij (and its XSPH sum's term), and adds it to its own
+// partial sums; the 8 partial sums are added at the row's end
+// (pair_loop_blocks.hpp). So the acceleration (and the XSPH sum) is the
+// scalar loop's up to the order of the sum: within a few n eps sum_j
+// |term_j| (test wcsph_terms/force_blocks_match_the_scalar_loop). The row
+// without XSPH is compiled apart, so a case without it pays nothing for it.
 #pragma once
 
 #include "sph/pair_loop_blocks.hpp"
@@ -21,7 +25,7 @@
 
 namespace sph {
 
-template <int D, class Kernel>
+template <int D, class Kernel, bool kXsph = false>
 struct PressureViscosityRow {
   const Particles<D>& P;
   Kernel kernel;
@@ -43,6 +47,7 @@ struct PressureViscosityRow {
     const Real h = kernel.h(), eps = 0.01, a = alpha, b = beta;
     const Kernel k = kernel;
     alignas(64) Real sa[D][kPairBlock] = {};
+    alignas(64) Real sx[kXsph ? D : 1][kPairBlock] = {};
     for (const std::uint32_t* block = begin; block < end; block += kPairBlock) {
       std::int64_t index[kPairBlock];
       const std::uint32_t filled = blockIndices(block, static_cast<std::uint32_t>(end - block), index);
@@ -63,9 +68,15 @@ struct PressureViscosityRow {
         const bool counts = laneCounts(l, filled, q.r2, support2);
         const Real s = sp + (viscous ? sv : 0.0);
         for (int d = 0; d < D; ++d) sa[d][l] += counts ? s * q.g[d] : 0.0;  // (not 0 x a NaN of a skipped pair)
+        if constexpr (kXsph) {
+          const Real f = 2 * m[j] / (rhoi + rho[j]) * k.W(q.r);  // (Xsph::add's factor, in its order)
+          for (int d = 0; d < D; ++d) sx[d][l] += counts ? f * (vj(d, l) - vi[d]) : 0.0;
+        }
       }
     }
     for (int d = 0; d < D; ++d) rates.a[d] += laneTotal(sa[d]);
+    if constexpr (kXsph)
+      for (int d = 0; d < D; ++d) rates.xsph[d] += laneTotal(sx[d]);
   }
 };
 

@@ -191,9 +191,12 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         using V = std::decay_t<decltype(visc)>;
         if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>> &&
                       std::is_same_v<V, MonaghanViscosityChoice>) {
-          if (pairBlocksAllowed() && !rateHere && !cspm && xsphEpsilon == 0 && !shifting.on &&
-              !anyPairTermActive(terms) && prologue.pOverRho2)
+          if (pairBlocksAllowed() && !rateHere && !cspm && !shifting.on && !anyPairTermActive(terms) &&
+              prologue.pOverRho2) {
+            if (xsphEpsilon > 0)
+              return loop(PressureViscosityRow<D, K, true>{P, k, prologue.pOverRho2, visc.alpha, visc.beta});
             return loop(PressureViscosityRow<D, K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta});
+          }
         }
         return loop(PairByPair{});
       },
