@@ -23,14 +23,6 @@
 
 namespace sph {
 
-// W(r) of a kernel of the family, as a function of r^2.
-template <class K>
-struct DensityKernel {
-  K kernel;
-  Real density(Real r2) const { return kernel.W(std::sqrt(r2)); }
-  Real densityAtZero() const { return kernel.W(0); }
-};
-
 template <int D>
 using DensityKernelChoice =
     std::variant<SeedKernels, DensityKernel<CubicSpline<D>>, DensityKernel<WendlandC2<D>>,

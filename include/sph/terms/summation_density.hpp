@@ -5,15 +5,38 @@
 // Gather form: particle i writes only rho_i, p_i (and c_i), so the loop runs
 // in parallel without atomics and gives the same result for any thread
 // count (the loop: walkNeighbours, neighbour_walk.hpp). Kernel needs
-// density(r2) and densityAtZero().
+// density(r2) and densityAtZero(). Wendland C2 in 2D takes SIMD blocks
+// where they pay (passes/summation_density_blocks.hpp).
 #pragma once
 
 #include "sph/neighbour_walk.hpp"
+#include "sph/passes/summation_density_blocks.hpp"
 #include "sph/particles.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <type_traits>
 
 namespace sph {
+
+// W(r) of a kernel of the family, as a function of r^2.
+template <class K>
+struct DensityKernel {
+  K kernel;
+  Real density(Real r2) const { return kernel.W(std::sqrt(r2)); }
+  Real densityAtZero() const { return kernel.W(0); }
+};
+
+// rho_i by the scalar loop, in the list's order.
+template <int D, class W>
+[[gnu::always_inline]] inline Real summedDensity(const Particles<D>& P, const NeighbourRow<D>& row, const W& kernel,
+                                                 std::size_t i, bool wallsInSums) {
+  Real rho_i = P.m[i] * kernel.densityAtZero();
+  row.forEachSummed(wallsInSums, [&](std::uint32_t j, const Vec<D>& rij) {
+    rho_i += P.m[j] * kernel.density(rij.squaredNorm());
+  });
+  return rho_i;
+}
 
 // wallsInSums = false leaves the wall neighbours out (repulsive walls);
 // clampNegative sets p_i = max(p_i, 0). Kernel and Eos: concrete types or
@@ -22,12 +45,23 @@ template <int D, class Kernel, class Eos>
 void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel,
                              const Eos& eos, bool wallsInSums = true, bool clampNegative = false) {
   const bool withSoundSpeed = !P.c.empty();
+  const bool blocks = kSummationBlocksPay<D> && pairBlocksAllowed();
   walkNeighbours(P, neighbours, P.range(ParticleRange::kFluid), std::tie(kernel, eos),
                  [&](std::size_t i, const NeighbourRow<D>& row, const auto& W, const auto& e) {
-                   Real rho_i = P.m[i] * W.densityAtZero();
-                   row.forEachSummed(wallsInSums, [&](std::uint32_t j, const Vec<D>& rij) {
-                     rho_i += P.m[j] * W.density(rij.squaredNorm());
-                   });
+                   Real rho_i;
+                   // Wendland C2 in SIMD blocks where they pay (2D: summation_density_blocks.hpp,
+                   // the same sum in another order).
+                   if constexpr (std::is_same_v<std::decay_t<decltype(W)>, DensityKernel<WendlandC2<D>>>) {
+                     if (blocks) {
+                       const typename NeighbourList<D>::Row r = neighbours.row(i);
+                       rho_i = SummationDensityRow<D>{P, W.kernel}(static_cast<std::uint32_t>(i), r.begin,
+                                                                   wallsInSums ? r.end : r.walls);
+                     } else {
+                       rho_i = summedDensity(P, row, W, i, wallsInSums);
+                     }
+                   } else {
+                     rho_i = summedDensity(P, row, W, i, wallsInSums);
+                   }
                    P.rho[i] = rho_i;
                    const Real p = e.pressure(rho_i);
                    P.p[i] = clampNegative ? std::max(p, Real(0)) : p;

@@ -1,0 +1,66 @@
+// The summation density's sum in SIMD blocks (pair_loop_blocks.hpp), for
+// Wendland C2 in 2D and 3D:
+//
+//   rho_i = m_i W(0) + sum_j m_j W(|x_i - x_j|)        (terms/summation_density.hpp)
+//
+// over a fluid particle's neighbours [begin, end): its fluid ones, then its
+// wall ones when the walls are in the sums. Each lane adds m_j W_ij to its
+// own partial sum; the row adds the 8 partial sums at its end, then the
+// self term. So rho_i is the scalar loop's sum with its terms in another
+// order: within a few n eps sum_j m_j W_ij of it (test
+// summation_density/blocks_match_the_scalar_loop), and the same on every
+// run, thread count and resume. A pair in the list's skin adds an exact 0
+// either way (W = 0 beyond the support); a NaN distance makes rho_i NaN, as
+// in the scalar loop, for the state check to name.
+#pragma once
+
+#include "sph/kernels/wendland_c2.hpp"
+#include "sph/pair_loop_blocks.hpp"
+
+#include <cmath>
+#include <cstdint>
+
+namespace sph {
+
+// Where the pass takes the row: in 2D where the blocks pay. In 3D, whose
+// lanes read x through the compiler's gather (BlockVectors), the one light
+// term per pair does not repay it: cases/dam_break_3d.case to 0.1 s, 1
+// thread, medians of 7 interleaved: 2.40 CPU s scalar, 2.62 in blocks. In
+// 2D, cases/dam_break.case --density summation --delta 0 to 0.3 s: 2.73 ->
+// 2.17 CPU s (medians of 5). (2026-12-07.)
+template <int D>
+constexpr bool kSummationBlocksPay = kPairBlocksPay && D == 2;
+
+template <int D>
+struct SummationDensityRow {
+  const Particles<D>& P;
+  WendlandC2<D> kernel;
+
+  // (Its own function, called once per particle: as runFluidRow.)
+  [[gnu::noinline]] Real operator()(std::uint32_t i, const std::uint32_t* begin, const std::uint32_t* end) const {
+    const Real* x = P.x.front().data();  // x_0, y_0, (z_0,) x_1, ...
+    const Real* m = P.m.data();
+    Real xi[D];
+    for (int d = 0; d < D; ++d) xi[d] = x[D * i + d];
+    const WendlandC2<D> k = kernel;
+    alignas(64) Real sum[kPairBlock] = {};
+    for (const std::uint32_t* block = begin; block < end; block += kPairBlock) {
+      std::int64_t index[kPairBlock];
+      const std::uint32_t filled = blockIndices(block, static_cast<std::uint32_t>(end - block), index);
+      const BlockVectors<D> xj(x, index);
+#pragma omp simd
+      for (int l = 0; l < kPairBlock; ++l) {
+        Real r2 = 0;
+        for (int d = 0; d < D; ++d) {
+          const Real rij = xi[d] - xj(d, l);
+          r2 += rij * rij;
+        }
+        const Real term = m[index[l]] * k.W(std::sqrt(r2));
+        sum[l] += l < static_cast<int>(filled) ? term : 0.0;
+      }
+    }
+    return m[i] * k.W(0) + laneTotal(sum);
+  }
+};
+
+}  // namespace sph
