@@ -100,23 +100,46 @@ inline std::uint32_t blockIndices(const std::uint32_t* block, std::uint32_t left
 #endif
 }
 
-// The positions (or velocities) of a block's 8 neighbours: in 2D gathered
-// into one array per component before the lanes (gatherVectors), in 3D read
-// by each lane from the particles' own array (the compiler's gather).
+// The 3D vectors of a block's 8 particles, one array per component: with
+// AVX, one masked 32-byte load per lane (x, y, z and a 0 in place of the
+// next particle's x, which is never read: no load past the array's end) and
+// a 4 x 4 transpose per 4 lanes, instead of a scalar load and an insert per
+// component and lane.
+[[gnu::always_inline]] inline void gatherVectors3(const Real* xyz, const std::int64_t (&index)[kPairBlock],
+                                                  Real (&c0)[kPairBlock], Real (&c1)[kPairBlock],
+                                                  Real (&c2)[kPairBlock]) {
+#if defined(__AVX__)
+  const __m256i three = _mm256_setr_epi64x(-1, -1, -1, 0);
+  for (int q = 0; q < kPairBlock; q += 4) {
+    const __m256d a = _mm256_maskload_pd(xyz + 3 * index[q], three);      // x_a y_a z_a 0
+    const __m256d b = _mm256_maskload_pd(xyz + 3 * index[q + 1], three);  // x_b y_b z_b 0
+    const __m256d c = _mm256_maskload_pd(xyz + 3 * index[q + 2], three);
+    const __m256d d = _mm256_maskload_pd(xyz + 3 * index[q + 3], three);
+    const __m256d ab0 = _mm256_unpacklo_pd(a, b), ab1 = _mm256_unpackhi_pd(a, b);  // x_a x_b z_a z_b; y_a y_b 0 0
+    const __m256d cd0 = _mm256_unpacklo_pd(c, d), cd1 = _mm256_unpackhi_pd(c, d);
+    _mm256_storeu_pd(c0 + q, _mm256_permute2f128_pd(ab0, cd0, 0x20));  // x_a x_b x_c x_d
+    _mm256_storeu_pd(c1 + q, _mm256_permute2f128_pd(ab1, cd1, 0x20));  // y_a y_b y_c y_d
+    _mm256_storeu_pd(c2 + q, _mm256_permute2f128_pd(ab0, cd0, 0x31));  // z_a z_b z_c z_d
+  }
+#else
+  for (int l = 0; l < kPairBlock; ++l)
+    c0[l] = xyz[3 * index[l]], c1[l] = xyz[3 * index[l] + 1], c2[l] = xyz[3 * index[l] + 2];
+#endif
+}
+
+// The positions (or velocities) of a block's 8 neighbours, gathered into
+// one array per component before the lanes (gatherVectors, gatherVectors3).
 template <int D>
 struct BlockVectors {
-  const Real* all;  // component d of particle j at all[D j + d]
-  const std::int64_t (&index)[kPairBlock];
-  alignas(64) Real c[D == 2 ? 2 : 1][kPairBlock];  // the gathered components (2D only)
+  alignas(64) Real c[D][kPairBlock];  // the gathered components
   static_assert(sizeof(Vec<D>) == D * sizeof(Real), "the particles' vectors are D packed doubles");
 
-  [[gnu::always_inline]] BlockVectors(const Real* a, const std::int64_t (&idx)[kPairBlock]) : all(a), index(idx) {
+  // all: component d of particle j at all[D j + d].
+  [[gnu::always_inline]] BlockVectors(const Real* all, const std::int64_t (&index)[kPairBlock]) {
     if constexpr (D == 2) gatherVectors(all, index, c[0], c[1]);
+    else gatherVectors3(all, index, c[0], c[1], c[2]);
   }
-  [[gnu::always_inline]] Real operator()(int d, int l) const {
-    if constexpr (D == 2) return c[d][l];
-    else return all[D * index[l] + d];
-  }
+  [[gnu::always_inline]] Real operator()(int d, int l) const { return c[d][l]; }
 };
 
 // One lane's pair, as makePair (pair_loop.hpp) forms it: r_ij = x_i - x_j,
