@@ -301,9 +301,9 @@ BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
 // neighbours and the self term). A row that dropped the self term, summed a
 // padding lane or the walls when it should not would be off by a whole
 // term (m W(0) is about 0.2 rho0 here). The row is called directly, so it
-// is compared on every build and in 3D too; where the pass takes it
-// (kSummationBlocksPay: 2D), the pass's result must be the row's, bit for
-// bit, elsewhere the scalar loop's.
+// is compared on every build; where the blocks pay, the pass's result must
+// be the row's, bit for bit (the pass takes them), elsewhere the scalar
+// loop's.
 template <int D>
 void checkSummationBlocks() {
   {
@@ -332,7 +332,7 @@ void checkSummationBlocks() {
         beyond += !(difference <= bound);
         if (bound > 0) worst = std::max(worst, difference / bound);
         differ += blocks != scalar.rho[i];
-        wired += kSummationBlocksPay<D> ? pass.rho[i] == blocks : pass.rho[i] == scalar.rho[i];
+        wired += kPairBlocksPay ? pass.rho[i] == blocks : pass.rho[i] == scalar.rho[i];
         // (With the walls in the sums: the free surface reads about 0.7 rho0.)
         plausible += !wallsInSums || (scalar.rho[i] > 0.5 * c.rho0 && scalar.rho[i] < 1.2 * c.rho0);
         if (wallsInSums) withWalls.push_back(scalar.rho[i]);

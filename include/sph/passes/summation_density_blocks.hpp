@@ -22,15 +22,6 @@
 
 namespace sph {
 
-// Where the pass takes the row: in 2D where the blocks pay. In 3D, whose
-// lanes read x through the compiler's gather (BlockVectors), the one light
-// term per pair does not repay it: cases/dam_break_3d.case to 0.1 s, 1
-// thread, medians of 7 interleaved: 2.40 CPU s scalar, 2.62 in blocks. In
-// 2D, cases/dam_break.case --density summation --delta 0 to 0.3 s: 2.73 ->
-// 2.17 CPU s (medians of 5). (2026-12-07.)
-template <int D>
-constexpr bool kSummationBlocksPay = kPairBlocksPay && D == 2;
-
 template <int D>
 struct SummationDensityRow {
   const Particles<D>& P;

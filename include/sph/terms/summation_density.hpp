@@ -5,8 +5,8 @@
 // Gather form: particle i writes only rho_i, p_i (and c_i), so the loop runs
 // in parallel without atomics and gives the same result for any thread
 // count (the loop: walkNeighbours, neighbour_walk.hpp). Kernel needs
-// density(r2) and densityAtZero(). Wendland C2 in 2D takes SIMD blocks
-// where they pay (passes/summation_density_blocks.hpp).
+// density(r2) and densityAtZero(). Wendland C2 takes SIMD blocks where
+// they pay (passes/summation_density_blocks.hpp).
 #pragma once
 
 #include "sph/neighbour_walk.hpp"
@@ -45,11 +45,11 @@ template <int D, class Kernel, class Eos>
 void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel,
                              const Eos& eos, bool wallsInSums = true, bool clampNegative = false) {
   const bool withSoundSpeed = !P.c.empty();
-  const bool blocks = kSummationBlocksPay<D> && pairBlocksAllowed();
+  const bool blocks = kPairBlocksPay && pairBlocksAllowed();
   walkNeighbours(P, neighbours, P.range(ParticleRange::kFluid), std::tie(kernel, eos),
                  [&](std::size_t i, const NeighbourRow<D>& row, const auto& W, const auto& e) {
                    Real rho_i;
-                   // Wendland C2 in SIMD blocks where they pay (2D: summation_density_blocks.hpp,
+                   // Wendland C2 in SIMD blocks where they pay (summation_density_blocks.hpp:
                    // the same sum in another order).
                    if constexpr (std::is_same_v<std::decay_t<decltype(W)>, DensityKernel<WendlandC2<D>>>) {
                      if (blocks) {
