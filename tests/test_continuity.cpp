@@ -197,9 +197,10 @@ BOOST_AUTO_TEST_CASE(tait_by_multiplication_equals_pow_and_every_eos_inverts) {
 // walls (their own rates), with each diffusion form and none. Tolerance:
 // the blocks add the same terms in another order, so each rate is within
 // 4 n eps sum_j |t_j| of the scalar loop's (reordered_sum_bound.hpp; the
-// largest difference is printed against it). A block that dropped the
-// diffusion, or counted a padding lane (a repeat of the block's first
-// pair), would be off by a whole term. (A pair beyond the support adds an
+// largest difference is printed against it). The wall neighbours take the
+// blocks too (continuity alone). A block that dropped the diffusion,
+// diffused against a wall, or counted a padding lane (a repeat of the
+// block's first pair), would be off by a whole term. (A pair beyond the support adds an
 // exact 0 either way: the kernel's gradient is 0 there.) (The pass uses the blocks only where they pay, with AVX2 or
 // AVX-512; the function is compared here on every build.)
 template <int D>
@@ -227,15 +228,18 @@ void checkDensityRateBlocks() {
       const auto fluidPairs = std::make_tuple(rate, here);
       const auto wallPairs = std::make_tuple(rate);
       const auto wallOwn = std::make_tuple(ContinuityDensity{walls.densityRates});
-      auto loop = [&](Particles<D>& Q, const auto& fluid, const auto& wall, const auto& own, const auto& fluidRow) {
+      auto loop = [&](Particles<D>& Q, const auto& fluid, const auto& wall, const auto& own, const auto& fluidRow,
+                      const auto& wallRow) {
         runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, wall, own, DensityRateEpilogue<D>{},
                     DensityRateEpilogue<D>{}, PairLoopParts{walls.inSums, walls.densityRates},
-                    NoGradientCorrection{}, prologue, fluidRow);
+                    NoGradientCorrection{}, prologue, fluidRow, wallRow);
       };
-      loop(blocks, fluidPairs, wallPairs, wallOwn, DensityRateRow<D, WendlandC2<D>>{blocks, kernel, here});
-      loop(scalar, fluidPairs, wallPairs, wallOwn, PairByPair{});
+      // The wall neighbours in blocks too: continuity alone, as the pass.
+      loop(blocks, fluidPairs, wallPairs, wallOwn, DensityRateRow<D, WendlandC2<D>>{blocks, kernel, here},
+           DensityRateRow<D, WendlandC2<D>, false>{blocks, kernel, here});
+      loop(scalar, fluidPairs, wallPairs, wallOwn, PairByPair{}, PairByPair{});
       loop(magnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), test::magnitudesOf(wallOwn),
-           PairByPair{});
+           PairByPair{}, PairByPair{});
       std::size_t beyond = 0, differ = 0, moving = 0;
       Real worst = 0;  // the largest difference over its bound
       const std::size_t n = walls.densityRates ? P.size() : P.fluidCount();

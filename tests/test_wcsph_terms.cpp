@@ -239,18 +239,22 @@ void checkForceBlocks() {
         // XSPH off: epsilon 0, an evaluator that adds nothing (as the pass's).
         const auto fluidPairs = std::make_tuple(pressure, viscosity, Xsph<WendlandC2<D>>{kernel, xsph ? 0.5 : 0.0});
         auto loop = [&](Particles<D>& Q, std::vector<Vec<D>>& xsphSums, const auto& fluid, const auto& walls,
-                        const auto& fluidRow) {
+                        const auto& fluidRow, const auto& wallRow) {
           runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, walls, std::tuple<>{},
-                      StoreRates{&xsphSums}, NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow);
+                      StoreRates{&xsphSums}, NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow, wallRow);
         };
+        // The wall neighbours in blocks too: the row without XSPH (the
+        // walls' pack has none).
+        const PressureViscosityRow<D, WendlandC2<D>> wallRow{blocks, kernel, prologue.pOverRho2, 0.02, beta};
         if (xsph)
           loop(blocks, xsphBlocks, fluidPairs, wallPairs,
-               PressureViscosityRow<D, WendlandC2<D>, true>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
+               PressureViscosityRow<D, WendlandC2<D>, true>{blocks, kernel, prologue.pOverRho2, 0.02, beta}, wallRow);
         else
           loop(blocks, xsphBlocks, fluidPairs, wallPairs,
-               PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta});
-        loop(scalar, xsphScalar, fluidPairs, wallPairs, PairByPair{});
-        loop(magnitude, xsphMagnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{});
+               PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta}, wallRow);
+        loop(scalar, xsphScalar, fluidPairs, wallPairs, PairByPair{}, PairByPair{});
+        loop(magnitude, xsphMagnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{},
+             PairByPair{});
         std::size_t beyond = 0, differ = 0, loaded = 0, smoothed = 0;
         Real worst = 0;  // the largest difference over its bound
         auto compare = [&](std::size_t rowLength, Real blockValue, Real scalarValue, Real magnitudeValue) {

@@ -204,14 +204,17 @@ template <int D, class FluidRow>
 //                               repeat the pack's operations lane by lane:
 //                               pair_loop_blocks.hpp); the pack still names
 //                               the bits
+//   wallRow(i, begin, end, rates)   optional, with a fluidRow: the same for
+//                               the fluid particle's wall neighbours, in
+//                               place of `wallPairs`
 template <int D, class Kernel, class FluidPairs, class WallPairs, class WallParticlePairs, class Epilogue,
           class WallEpilogue, class Correction = NoGradientCorrection, class Prologue = NoPrologue,
-          class FluidRow = PairByPair>
+          class FluidRow = PairByPair, class WallRow = PairByPair>
 unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const Kernel& kernel, Real support,
                      const FluidPairs& fluidPairs, const WallPairs& wallPairs,
                      const WallParticlePairs& wallParticlePairs, const Epilogue& epilogue,
                      const WallEpilogue& wallEpilogue, PairLoopParts parts = {}, const Correction& correct = {},
-                     const Prologue& prologue = {}, const FluidRow& fluidRow = {}) {
+                     const Prologue& prologue = {}, const FluidRow& fluidRow = {}, const WallRow& wallRow = {}) {
   const std::size_t n = P.size(), nFluid = P.fluidCount();
   const Real invSupport = 1 / support, support2 = support * support;
   const bool wallParticles = std::tuple_size_v<WallParticlePairs> > 0 && parts.wallParticles && P.hasWalls();
@@ -250,8 +253,13 @@ unsigned runPairLoop(Particles<D>& P, const NeighbourList<D>& neighbours, const 
       if constexpr (!std::is_same_v<FluidRow, PairByPair>) {
         const auto row = neighbours.row(i);
         runFluidRow<D>(fluidRow, ii, row.begin, decltype(byKind)::value ? row.walls : row.end, r);
-        if constexpr (decltype(byKind)::value)
-          for (const std::uint32_t* q = row.walls; q != row.end; ++q) wall(*q);
+        if constexpr (decltype(byKind)::value) {
+          if constexpr (!std::is_same_v<WallRow, PairByPair>) {
+            if (row.walls != row.end) runFluidRow<D>(wallRow, ii, row.walls, row.end, r);  // (most have none)
+          } else {
+            for (const std::uint32_t* q = row.walls; q != row.end; ++q) wall(*q);
+          }
+        }
       } else if constexpr (decltype(byKind)::value) {
         neighbours.forEachByKind(i, fluid, wall);
       } else {

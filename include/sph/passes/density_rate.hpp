@@ -61,21 +61,24 @@ unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighb
   const unsigned bits = std::visit(
       [&](const auto& k) {
         const ContinuityDensity rate{true};
-        auto loop = [&](const auto& fluidRow) {
+        auto loop = [&](const auto& fluidRow, const auto& wallRow) {
           return runPairLoop(P, neighbours, k, k.support(),
                              std::tuple_cat(std::make_tuple(rate, diffusionHere), densityRateTermEvaluators(terms, k)),
                              std::make_tuple(rate), std::make_tuple(ContinuityDensity{walls.densityRates}),
                              DensityRateEpilogue<D>{}, DensityRateEpilogue<D>{},
                              PairLoopParts{walls.inSums, walls.densityRates}, NoGradientCorrection{}, prologue,
-                             fluidRow);
+                             fluidRow, wallRow);
         };
         using K = std::decay_t<decltype(k)>;
         if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>>) {
           if (pairBlocksAllowed() && !anyRateTermActive(terms) &&
-              (diffusionHere.coefficient == 0 || diffusionHere.volume))
-            return loop(DensityRateRow<D, K>{P, k, diffusionHere});
+              (diffusionHere.coefficient == 0 || diffusionHere.volume)) {
+            // The wall neighbours: continuity alone (the diffusion is
+            // between fluid particles), the wall pack's one term.
+            return loop(DensityRateRow<D, K>{P, k, diffusionHere}, DensityRateRow<D, K, false>{P, k, diffusionHere});
+          }
         }
-        return loop(PairByPair{});
+        return loop(PairByPair{}, PairByPair{});
       },
       kernel);
   return bits | (walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u);

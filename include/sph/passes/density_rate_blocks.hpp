@@ -22,8 +22,9 @@ namespace sph {
 // d rho_i/dt's sum over the fluid neighbours [begin, end) of fluid particle
 // i, added to r.drho. `diffusion.volume`: m/rho of every particle, required
 // with the diffusion on (the scalar evaluator's fallback, m/rho at each
-// pair, is not repeated here).
-template <int D, class Kernel>
+// pair, is not repeated here). kDiffusion = false: continuity alone (the
+// wall neighbours' row; `diffusion` is not read).
+template <int D, class Kernel, bool kDiffusion = true>
 struct DensityRateRow {
   const Particles<D>& P;
   Kernel kernel;
@@ -38,7 +39,7 @@ struct DensityRateRow {
     Real xi[D], vi[D], hydrostatic[D];
     for (int d = 0; d < D; ++d) xi[d] = x[D * i + d], vi[d] = v[D * i + d], hydrostatic[d] = diffusion.hydrostatic[d];
     const Real rhoi = rho[i];
-    const bool diffuse = diffusion.coefficient != 0;
+    const bool diffuse = kDiffusion && diffusion.coefficient != 0;
     const Real coefficient = diffusion.coefficient, eta2 = diffusion.eta2;
     const Real* V = diffuse ? diffusion.volume : rho;  // (a lane reads it either way: never a null array)
     const Real support = kernel.support(), support2 = support * support;
@@ -55,9 +56,13 @@ struct DensityRateRow {
         Real vij[D];
         for (int d = 0; d < D; ++d) vij[d] = vi[d] - vj(d, l);
         const Real continuity = m[j] * laneDot<D>(vij, q.g);
-        const Real psi = (rho[j] - rhoi) + laneDot<D>(hydrostatic, q.rij);
-        const Real diffused = coefficient * V[j] * psi * (-laneDot<D>(q.rij, q.g)) / (q.r * q.r + eta2);
-        sum[l] += laneCounts(l, filled, q.r2, support2) ? continuity + (diffuse ? diffused : 0.0) : 0.0;
+        if constexpr (kDiffusion) {
+          const Real psi = (rho[j] - rhoi) + laneDot<D>(hydrostatic, q.rij);
+          const Real diffused = coefficient * V[j] * psi * (-laneDot<D>(q.rij, q.g)) / (q.r * q.r + eta2);
+          sum[l] += laneCounts(l, filled, q.r2, support2) ? continuity + (diffuse ? diffused : 0.0) : 0.0;
+        } else {
+          sum[l] += laneCounts(l, filled, q.r2, support2) ? continuity : 0.0;
+        }
       }
     }
     rates.drho += laneTotal(sum);

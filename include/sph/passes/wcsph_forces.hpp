@@ -181,24 +181,28 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         const ForceEpilogue<D, writes, ParticleTermForces<D>> epilogue{
             bodies, xsphEpsilon, rateHere, surfaceTension ? &*surfaceTension : nullptr, ParticleTermForces<D>{terms},
             shifting.on, k.W(0)};
-        auto loop = [&](const auto& fluidRow) {
+        auto loop = [&](const auto& fluidRow, const auto& wallRow) {
           return runPairLoop(P, neighbours, k, k.support(), fluidPairs, wallNeighbourPairs,
                              std::make_tuple(ContinuityDensity{wallRatesHere}), epilogue, DensityRateEpilogue<D>{},
-                             PairLoopParts{walls.inSums, wallRatesHere}, correct, prologue, fluidRow);
+                             PairLoopParts{walls.inSums, wallRatesHere}, correct, prologue, fluidRow, wallRow);
         };
         // The water physics in SIMD blocks (force_blocks.hpp: the
         // same accelerations up to the order of the sum), where they pay.
+        // The wall neighbours take the row without XSPH (fluid pairs only),
+        // with the walls' viscosity: wallNeighbourPairs' terms.
         using V = std::decay_t<decltype(visc)>;
         if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>> &&
                       std::is_same_v<V, MonaghanViscosityChoice>) {
           if (pairBlocksAllowed() && !rateHere && !cspm && !shifting.on && !anyPairTermActive(terms) &&
               prologue.pOverRho2) {
+            const PressureViscosityRow<D, K> wallRow{P, k, prologue.pOverRho2, wallViscosity ? visc.alpha : 0,
+                                                     wallViscosity ? visc.beta : 0};
             if (xsphEpsilon > 0)
-              return loop(PressureViscosityRow<D, K, true>{P, k, prologue.pOverRho2, visc.alpha, visc.beta});
-            return loop(PressureViscosityRow<D, K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta});
+              return loop(PressureViscosityRow<D, K, true>{P, k, prologue.pOverRho2, visc.alpha, visc.beta}, wallRow);
+            return loop(PressureViscosityRow<D, K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta}, wallRow);
           }
         }
-        return loop(PairByPair{});
+        return loop(PairByPair{}, PairByPair{});
       },
       kernel, loopViscosity(viscosity));
   const unsigned wallBits = walls.densityRates && P.hasWalls() ? term_bits::kDynamicWalls : 0u;
