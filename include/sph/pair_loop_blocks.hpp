@@ -1,26 +1,30 @@
-// What the row functions that take a fluid particle's fluid neighbours in
-// SIMD blocks share (passes/density_rate_blocks.hpp, passes/force_blocks.hpp;
-// runPairLoop's fluidRow, pair_loop.hpp). A row walks its neighbours 8 at a
+// What the row functions that take a fluid particle's neighbours in SIMD
+// blocks share (passes/density_rate_blocks.hpp, passes/force_blocks.hpp:
+// runPairLoop's fluidRow and wallRow, pair_loop.hpp; and
+// passes/summation_density_blocks.hpp). A row walks its neighbours 8 at a
 // time: each lane forms one pair with the scalar evaluators' formulas and
 // adds it to the lane's own partial sum, and the row adds the 8 partial sums
 // at its end. So a row's sum is the scalar loop's with its terms in another
 // order: different in the last bits (a few n eps sum_j |term_j| for n
-// pairs; the tests continuity/density_rate_blocks_match_the_scalar_loop and
-// wcsph_terms/force_blocks_match_the_scalar_loop hold it to that bound), and
-// the same on every run, thread count and resume (the order depends on the
-// neighbour list alone). Adding the lanes' results one pair after the other
-// in the list's order instead, as the first form of these rows did (the
-// scalar loop's bits), made the dam break 1.55 times slower: the serial
-// chain of additions, not the pairs' arithmetic, bounded the walk. Each
-// term is formed with the scalar evaluator's operations, in its order (the
-// build's -ffp-contract=off keeps the compiler from fusing them), so only
-// the order of the sum differs, and the force row's one product
-// (m_j P_ij + m_j Pi_ij) grad W where the scalar loop takes two. The wall
-// neighbours, the wall particles' own rates and the epilogues stay
-// runPairLoop's. Each row writes its own block loop around these helpers: a
-// shared walk calling the row's lambda per lane left GCC 12's loop scalar,
-// 2.5 times slower (docs/performance.md). A row skips the pairs in the list's skin, and a pair whose
-// r^2 is NaN, as the scalar loop does.
+// pairs; the tests continuity/density_rate_blocks_match_the_scalar_loop,
+// wcsph_terms/force_blocks_match_the_scalar_loop and
+// wcsph_terms/summation_density_blocks_match_the_scalar_loop hold it to that
+// bound), and the same on every run, thread count and resume (the order
+// depends on the neighbour list alone). Adding the lanes' results one pair
+// after the other in the list's order instead, as the first form of these
+// rows did (the scalar loop's bits), made the dam break 1.55 times slower:
+// the serial chain of additions, not the pairs' arithmetic, bounded the
+// walk. Each term is formed with the scalar evaluator's operations, in its
+// order (the build's -ffp-contract=off keeps the compiler from fusing
+// them), so only the order of the sum differs, and the force row's one
+// product (m_j P_ij + m_j Pi_ij) grad W where the scalar loop takes two.
+// The wall particles' own rates and the epilogues stay runPairLoop's. Each
+// row writes its own block loop around these helpers: a shared walk calling
+// the row's lambda per lane left GCC 12's loop scalar, 2.5 times slower
+// (docs/performance.md). The force and density-rate rows skip the pairs in
+// the list's skin, and a pair whose r^2 is NaN, as their scalar loop does;
+// the summation row adds the skin's exact zeros and a NaN, as its scalar
+// loop does.
 #pragma once
 
 #include "sph/neighbour_list.hpp"

@@ -8,10 +8,10 @@
 // own partial sum; the row adds the 8 partial sums at its end, then the
 // self term. So rho_i is the scalar loop's sum with its terms in another
 // order: within a few n eps sum_j m_j W_ij of it (test
-// summation_density/blocks_match_the_scalar_loop), and the same on every
-// run, thread count and resume. A pair in the list's skin adds an exact 0
-// either way (W = 0 beyond the support); a NaN distance makes rho_i NaN, as
-// in the scalar loop, for the state check to name.
+// wcsph_terms/summation_density_blocks_match_the_scalar_loop), and the same
+// on every run, thread count and resume. A pair in the list's skin adds an
+// exact 0 either way (W = 0 beyond the support); a NaN distance makes rho_i
+// NaN, as in the scalar loop, for the state check to name.
 #pragma once
 
 #include "sph/kernels/wendland_c2.hpp"

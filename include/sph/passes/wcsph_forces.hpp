@@ -26,10 +26,10 @@
 // pressure term in the fluid-fluid pack, the per-particle terms in the
 // epilogue; an inactive one is one predictable branch, not an instantiation.
 // The water physics (Wendland C2, symmetric pressure and Monaghan's
-// viscosity, the density rate computed apart, nothing else in the pack)
-// takes its fluid-fluid pairs in SIMD blocks on a build for AVX2 or
-// AVX-512 (force_blocks.hpp: the same accelerations up to the order of
-// the sum).
+// viscosity, the density rate computed apart, XSPH or not, nothing else in
+// the pack) takes its pairs, fluid and wall, in SIMD blocks on a build for
+// AVX2 or AVX-512 (force_blocks.hpp: the same accelerations up to the
+// order of the sum).
 #pragma once
 
 #include "sph/boundaries/wall_sums.hpp"
