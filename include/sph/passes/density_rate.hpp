@@ -12,8 +12,8 @@
 // per kernel. The optional terms that write the density rate only
 // (terms/optional_terms.hpp) follow the diffusion, in their list order.
 // With Wendland C2 and no such term, on a build for AVX2 or AVX-512,
-// the fluid pairs go in SIMD blocks instead (density_rate_blocks.hpp: the
-// same rates up to the order of the sum).
+// the fluid particles' pairs, fluid and wall, go in SIMD blocks instead
+// (density_rate_blocks.hpp: the same rates up to the order of the sum).
 #pragma once
 
 #include "sph/boundaries/wall_sums.hpp"

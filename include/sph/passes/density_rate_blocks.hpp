@@ -1,5 +1,7 @@
-// The density-rate pass's fluid-fluid pairs in SIMD blocks
-// (pair_loop_blocks.hpp), in 2D and 3D, with a kernel whose dWdr_r vectorises:
+// The density-rate pass's pairs in SIMD blocks (pair_loop_blocks.hpp; a fluid
+// particle's fluid neighbours, and with kDiffusion = false, continuity
+// alone, its wall neighbours), in 2D and 3D, with a kernel whose dWdr_r
+// vectorises:
 //
 //   d rho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij                       (continuity_density.hpp)
 //              + 2 delta h c0 sum_j V_j psi_ij (-r_ij . grad_i W_ij) / (r_ij^2 + eta^2)
@@ -23,7 +25,7 @@ namespace sph {
 // i, added to r.drho. `diffusion.volume`: m/rho of every particle, required
 // with the diffusion on (the scalar evaluator's fallback, m/rho at each
 // pair, is not repeated here). kDiffusion = false: continuity alone (the
-// wall neighbours' row; `diffusion` is not read).
+// wall neighbours' row; the diffusion's sum is compiled out).
 template <int D, class Kernel, bool kDiffusion = true>
 struct DensityRateRow {
   const Particles<D>& P;

@@ -1,4 +1,5 @@
-// The force pass's fluid-fluid pairs in SIMD blocks (pair_loop_blocks.hpp)
+// The force pass's pairs in SIMD blocks (pair_loop_blocks.hpp; a fluid
+// particle's fluid neighbours, and with kXsph = false its wall neighbours)
 // for the water physics, 2D and 3D: Wendland C2, the symmetric pressure term and
 // Monaghan's artificial viscosity, with the density rate computed apart
 // (leap-frog, symplectic Euler or summation density), and optionally XSPH:
