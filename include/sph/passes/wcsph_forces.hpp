@@ -195,8 +195,9 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
                       std::is_same_v<V, MonaghanViscosityChoice>) {
           if (pairBlocksAllowed() && !rateHere && !cspm && !shifting.on && !anyPairTermActive(terms) &&
               prologue.pOverRho2) {
-            const PressureViscosityRow<D, K> wallRow{P, k, prologue.pOverRho2, wallViscosity ? visc.alpha : 0,
-                                                     wallViscosity ? visc.beta : 0};
+            // (alpha, beta of the walls' own evaluator: 0 with free slip.)
+            const auto wallVisc = std::get<0>(viscosityPack<K, true>(k, visc, wallViscosity));
+            const PressureViscosityRow<D, K> wallRow{P, k, prologue.pOverRho2, wallVisc.alpha, wallVisc.beta};
             if (xsphEpsilon > 0)
               return loop(PressureViscosityRow<D, K, true>{P, k, prologue.pOverRho2, visc.alpha, visc.beta}, wallRow);
             return loop(PressureViscosityRow<D, K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta}, wallRow);

@@ -48,20 +48,18 @@ void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours
   const bool blocks = kPairBlocksPay && pairBlocksAllowed();
   walkNeighbours(P, neighbours, P.range(ParticleRange::kFluid), std::tie(kernel, eos),
                  [&](std::size_t i, const NeighbourRow<D>& row, const auto& W, const auto& e) {
-                   Real rho_i;
                    // Wendland C2 in SIMD blocks where they pay (summation_density_blocks.hpp:
                    // the same sum in another order).
-                   if constexpr (std::is_same_v<std::decay_t<decltype(W)>, DensityKernel<WendlandC2<D>>>) {
-                     if (blocks) {
-                       const typename NeighbourList<D>::Row r = neighbours.row(i);
-                       rho_i = SummationDensityRow<D>{P, W.kernel}(static_cast<std::uint32_t>(i), r.begin,
-                                                                   wallsInSums ? r.end : r.walls);
-                     } else {
-                       rho_i = summedDensity(P, row, W, i, wallsInSums);
+                   const Real rho_i = [&] {
+                     if constexpr (std::is_same_v<std::decay_t<decltype(W)>, DensityKernel<WendlandC2<D>>>) {
+                       if (blocks) {
+                         const typename NeighbourList<D>::Row r = neighbours.row(i);
+                         return SummationDensityRow<D>{P, W.kernel}(static_cast<std::uint32_t>(i), r.begin,
+                                                                    wallsInSums ? r.end : r.walls);
+                       }
                      }
-                   } else {
-                     rho_i = summedDensity(P, row, W, i, wallsInSums);
-                   }
+                     return summedDensity(P, row, W, i, wallsInSums);
+                   }();
                    P.rho[i] = rho_i;
                    const Real p = e.pressure(rho_i);
                    P.p[i] = clampNegative ? std::max(p, Real(0)) : p;
