@@ -310,48 +310,46 @@ BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
 // loop's.
 template <int D>
 void checkSummationBlocks() {
-  {
-    const char* boundary = "dummy";  // (dynamic walls need continuity density)
-    CaseConfig c = test::waterColumn(boundary, 0.3, D);
-    c.density = "summation", c.delta = 0;
-    const Scene<D> s = test::settled<D>(c, 60);
-    const Particles<D>& P = s.particles();
-    const DensityKernel<WendlandC2<D>> W{WendlandC2<D>(c.h)};
-    const TaitEos eos(c.rho0, c.c0, 7);
-    std::vector<Real> withWalls;
-    for (const bool wallsInSums : {true, false}) {
-      Particles<D> scalar = P, pass = P;
-      pairBlocksAllowed() = false;
-      computeSummationDensity(scalar, s.neighbours(), W, eos, wallsInSums);
-      pairBlocksAllowed() = true;
-      computeSummationDensity(pass, s.neighbours(), W, eos, wallsInSums);
-      std::size_t beyond = 0, differ = 0, wired = 0, plausible = 0, walled = 0;
-      Real worst = 0;
-      for (std::size_t i = 0; i < P.fluidCount(); ++i) {
-        const typename NeighbourList<D>::Row row = s.neighbours().row(i);
-        const std::uint32_t* end = wallsInSums ? row.end : row.walls;
-        const Real blocks = SummationDensityRow<D>{P, W.kernel}(static_cast<std::uint32_t>(i), row.begin, end);
-        const Real bound = test::reorderedSumBound(static_cast<std::size_t>(end - row.begin) + 1, scalar.rho[i]);
-        const Real difference = std::abs(blocks - scalar.rho[i]);
-        beyond += !(difference <= bound);
-        if (bound > 0) worst = std::max(worst, difference / bound);
-        differ += blocks != scalar.rho[i];
-        wired += kPairBlocksPay ? pass.rho[i] == blocks : pass.rho[i] == scalar.rho[i];
-        // (With the walls in the sums: the free surface reads about 0.7 rho0.)
-        plausible += !wallsInSums || (scalar.rho[i] > 0.5 * c.rho0 && scalar.rho[i] < 1.2 * c.rho0);
-        if (wallsInSums) withWalls.push_back(scalar.rho[i]);
-        else walled += withWalls[i] > scalar.rho[i] * (1 + 1e-3);
-      }
-      BOOST_TEST_MESSAGE(D << "D, " << boundary << ", walls in the sums " << wallsInSums << ": " << differ << " of "
-                           << P.fluidCount() << " densities differ in their last bits, the largest difference "
-                           << worst << " of its bound");
-      BOOST_TEST_INFO(D << "D, " << boundary << ", walls in the sums " << wallsInSums);
-      BOOST_TEST(beyond == 0u);
-      BOOST_TEST(wired == P.fluidCount());
-      BOOST_TEST(plausible == P.fluidCount());
-      // The walls' share is summed, or left out (the particles next to them).
-      if (!wallsInSums) BOOST_TEST(walled > P.fluidCount() / 10);
+  const char* boundary = "dummy";  // (dynamic walls need continuity density)
+  CaseConfig c = test::waterColumn(boundary, 0.3, D);
+  c.density = "summation", c.delta = 0;
+  const Scene<D> s = test::settled<D>(c, 60);
+  const Particles<D>& P = s.particles();
+  const DensityKernel<WendlandC2<D>> W{WendlandC2<D>(c.h)};
+  const TaitEos eos(c.rho0, c.c0, 7);
+  std::vector<Real> withWalls;
+  for (const bool wallsInSums : {true, false}) {
+    Particles<D> scalar = P, pass = P;
+    pairBlocksAllowed() = false;
+    computeSummationDensity(scalar, s.neighbours(), W, eos, wallsInSums);
+    pairBlocksAllowed() = true;
+    computeSummationDensity(pass, s.neighbours(), W, eos, wallsInSums);
+    std::size_t beyond = 0, differ = 0, wired = 0, plausible = 0, walled = 0;
+    Real worst = 0;
+    for (std::size_t i = 0; i < P.fluidCount(); ++i) {
+      const typename NeighbourList<D>::Row row = s.neighbours().row(i);
+      const std::uint32_t* end = wallsInSums ? row.end : row.walls;
+      const Real blocks = SummationDensityRow<D>{P, W.kernel}(static_cast<std::uint32_t>(i), row.begin, end);
+      const Real bound = test::reorderedSumBound(static_cast<std::size_t>(end - row.begin) + 1, scalar.rho[i]);
+      const Real difference = std::abs(blocks - scalar.rho[i]);
+      beyond += !(difference <= bound);
+      if (bound > 0) worst = std::max(worst, difference / bound);
+      differ += blocks != scalar.rho[i];
+      wired += kPairBlocksPay ? pass.rho[i] == blocks : pass.rho[i] == scalar.rho[i];
+      // (With the walls in the sums: the free surface reads about 0.7 rho0.)
+      plausible += !wallsInSums || (scalar.rho[i] > 0.5 * c.rho0 && scalar.rho[i] < 1.2 * c.rho0);
+      if (wallsInSums) withWalls.push_back(scalar.rho[i]);
+      else walled += withWalls[i] > scalar.rho[i] * (1 + 1e-3);
     }
+    BOOST_TEST_MESSAGE(D << "D, " << boundary << ", walls in the sums " << wallsInSums << ": " << differ << " of "
+                         << P.fluidCount() << " densities differ in their last bits, the largest difference "
+                         << worst << " of its bound");
+    BOOST_TEST_INFO(D << "D, " << boundary << ", walls in the sums " << wallsInSums);
+    BOOST_TEST(beyond == 0u);
+    BOOST_TEST(wired == P.fluidCount());
+    BOOST_TEST(plausible == P.fluidCount());
+    // The walls' share is summed, or left out (the particles next to them).
+    if (!wallsInSums) BOOST_TEST(walled > P.fluidCount() / 10);
   }
 }
 
