@@ -150,6 +150,63 @@ BOOST_AUTO_TEST_CASE(sparse_points_with_hash_collisions_3d) {
   checkAgainstBruteForce<3>(x, 0.01);
 }
 
+// Walls get a table sized by their own count. A tank's walls are a thin ring
+// around a box their fluid fills only in part: a ring of walls (spacing half
+// the radius) around the unit square, fluid in its upper-right 0.3 x 0.3
+// (whose cells' hashes exceed the walls' table: they wrap around), ten
+// particles a cell. The box's cells exceed 2 n_walls, so the walls'
+// table is the power of two at or above 2 n_walls, with hash collisions
+// (cells far apart sharing a bucket); the fluid's table is the box's cells,
+// as 2 n_fluid exceed them. The grid's bucket starts take at most (box
+// cells + 4 n_walls + 1) x 4 bytes, not one table of the box's cells per kind
+// (the 2D dam break at 214 910 particles: 27.5 -> 14.8 grid bytes per
+// particle), and the pairs, by kind, are the brute force's.
+BOOST_AUTO_TEST_CASE(walls_get_a_table_of_their_own_size) {
+  const Real radius = std::sqrt(10.0 / 20000);  // ten particles a cell at 20 000 in the unit square
+  std::vector<Vec<2>> x = uniform<2>(1800, 0.7, 1, 11);
+  const std::size_t fluid = x.size();
+  const int perSide = static_cast<int>(std::ceil(2 / radius));
+  for (int s = 0; s < perSide; ++s) {
+    const Real t = static_cast<Real>(s) / perSide;
+    for (const Vec<2>& w : {Vec<2>(t, -0.01), Vec<2>(1.01, t), Vec<2>(1 - t, 1.01), Vec<2>(-0.01, 1 - t)})
+      x.push_back(w);
+  }
+  const std::size_t walls = x.size() - fluid;
+  Particles<2> P = particlesAt<2>(x);
+  P.resize(x.size(), fluid);
+  HashGrid<2> grid(radius);
+  grid.build(P.x, fluid);
+  P.permute(grid.order());
+  const double boxCells = std::pow(std::ceil(1.02 / radius) + 3, 2);
+  const double starts = static_cast<double>(grid.bytesAllocated()) - 8.0 * static_cast<double>(x.size());
+  BOOST_TEST_CONTEXT("box cells " << boxCells << ", walls " << walls << ", bucket starts " << starts / 4) {
+    BOOST_TEST_REQUIRE(2.0 * static_cast<double>(walls) < 0.5 * boxCells);  // collisions in the walls' table
+    BOOST_TEST(starts <= 4 * (boxCells + 4.0 * static_cast<double>(walls) + 1));
+  }
+  // Pairs by kind: a fluid particle's fluid and wall neighbours, a wall
+  // particle's fluid neighbours (the list holds no wall-wall pair).
+  PairSet<2> expected, found;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    for (std::size_t j = 0; j < x.size(); ++j)
+      if (i != j && (i < fluid || j < fluid) && (P.x[i] - P.x[j]).squaredNorm() < radius * radius)
+        expected.insert({P.id[i], P.id[j]});
+  BOOST_TEST_REQUIRE(expected.size() > 10 * fluid);
+  NeighbourList<2> list;
+  list.build(grid, P.x, radius, fluid);
+  std::size_t wallPairs = 0;
+  for (std::size_t i = 0; i < fluid; ++i)
+    list.forEachByKind(
+        i, [&](std::uint32_t j) { found.insert({P.id[i], P.id[j]}); },
+        [&](std::uint32_t j) {
+          found.insert({P.id[i], P.id[j]});
+          ++wallPairs;
+        });
+  for (std::size_t i = fluid; i < x.size(); ++i)
+    list.forEach(i, [&](std::uint32_t j) { found.insert({P.id[i], P.id[j]}); });
+  BOOST_TEST(wallPairs > 0u);
+  BOOST_TEST((found == expected));
+}
+
 // One list rebuilt with thread counts going up and down (its per-thread
 // buffers and chunk bounds are reused), around the serial threshold too.
 // A box the particles fill: its cells (a tenth of N here: about ten

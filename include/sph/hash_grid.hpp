@@ -3,8 +3,7 @@
 // Space is cut into cubic cells of edge `cellSize` (the kernel support), so
 // every neighbour of a particle lies in its own cell or one of the 3^D - 1
 // adjacent cells. Cell coordinates c = floor(x / cellSize) are hashed into a
-// power-of-two table of about 2N buckets, or of the bounding box's cells when
-// they are fewer (spatial hashing as in Teschner et al. 2003, "Optimized
+// table of buckets (spatial hashing as in Teschner et al. 2003, "Optimized
 // spatial hashing for collision detection of deformable objects"), so the
 // domain needs no bounds and memory grows with N, not with volume. The hash
 // is the row-major index of the cell in the particles' bounding box, modulo
@@ -12,8 +11,10 @@
 //   bucket = (c0 - m0 + 1) + (c1 - m1 + 1) s1 + (c2 - m2 + 1) s2   mod T
 // (m: lowest cell, s: row and plane strides of the box). Unlike the xor hash
 // it keeps the three cells of a stencil row in consecutive buckets, so their
-// particles are one contiguous run in memory; and it is collision-free
-// whenever the box has fewer cells than T.
+// particles are one contiguous run in memory. T is the box's cells exactly
+// when they are at most 2 n (n: the particles of the table's kind, below):
+// then the bucket is the cell's row-major index itself, collision-free;
+// else the power of two at or above 2 n.
 //
 // build() counting-sorts the particles by bucket; after the caller applies
 // order() to the particle arrays, the particles of bucket b are the contiguous
@@ -26,12 +27,15 @@
 // are ghost particles (periodic_ghosts.hpp), binned like any other.
 //
 // Kinds: each kind of particle present gets a table of buckets of its own,
-// after the previous kind's (bucket + k T): fluid, walls (from index
-// `fluidCount`), ghosts of fluid (from `ownedCount`), ghosts of walls (from
-// `ghostFluidEnd`). So the sort keeps every wall after every fluid particle
-// and every ghost after the owned ones, and a Stencil lists the fluid
-// ranges (owned, then ghosts) and the wall ranges (owned, then ghosts)
-// around a cell separately. Without walls and ghosts there is one table.
+// sized by its own count, after the previous kind's: fluid, walls (from
+// index `fluidCount`), ghosts of fluid (from `ownedCount`), ghosts of walls
+// (from `ghostFluidEnd`). So the sort keeps every wall after every fluid
+// particle and every ghost after the owned ones, and a Stencil lists the
+// fluid ranges (owned, then ghosts) and the wall ranges (owned, then
+// ghosts) around a cell separately. Without walls and ghosts there is one
+// table. (The walls of a tank are few beside its fluid and fill few of the
+// box's cells: their table of 2 n_walls buckets, not the box's cells, cut
+// the grid of the 2D dam break from 27.5 to about 15 bytes per particle.)
 #pragma once
 
 #include "sph/types.hpp"
@@ -39,6 +43,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 namespace sph {
@@ -71,22 +76,28 @@ class HashGrid {
     fluidCount = std::min(fluidCount, ownedCount);
     ghostFluidEnd = std::clamp(ghostFluidEnd, ownedCount, n);
     setStrides(x);
-    const std::size_t tableSize = tableSizeFor(n, boxCells_);
-    std::uint32_t tables = 1;
-    auto table = [&](bool present) { return present ? static_cast<std::uint32_t>(tableSize) * tables++ : 0u; };
-    wallOffset_ = table(fluidCount < ownedCount);
-    ghostOffset_ = table(ownedCount < ghostFluidEnd);
-    ghostWallOffset_ = table(ghostFluidEnd < n);
-    if (cellStart_.size() != tables * tableSize + 1) cellStart_.assign(tables * tableSize + 1, 0);
-    mask_ = tableSize - 1;
+    // The kinds' tables, one after the other: each sized by its count.
+    const std::size_t end[kKinds] = {fluidCount, ownedCount, ghostFluidEnd, n};
+    std::size_t used = 0, from = 0;
+    for (int k = 0; k < kKinds; ++k) {
+      const std::size_t count = end[k] - from;
+      from = end[k];
+      table_[k] = {};
+      if (count == 0 && k > 0) continue;  // absent (offset 0); the fluid's table is always there
+      table_[k].offset = static_cast<std::uint32_t>(used);
+      table_[k].size = tableSizeFor(count, boxCells_);
+      used += table_[k].size;
+    }
+    wallOffset_ = table_[1].offset, ghostOffset_ = table_[2].offset, ghostWallOffset_ = table_[3].offset;
+    if (used >= UINT32_MAX) throw std::length_error("HashGrid: more than 2^32 buckets");
+    if (cellStart_.size() != used + 1) cellStart_.assign(used + 1, 0);
     bucket_.resize(n);
     order_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
-    for (std::size_t i = 0; i < n; ++i)
-      bucket_[i] = bucketOf(cellOf(x[i])) + (i < fluidCount      ? 0
-                                             : i < ownedCount    ? wallOffset_
-                                             : i < ghostFluidEnd ? ghostOffset_
-                                                                 : ghostWallOffset_);
+    for (std::size_t i = 0; i < n; ++i) {
+      const int k = i < fluidCount ? 0 : i < ownedCount ? 1 : i < ghostFluidEnd ? 2 : 3;
+      bucket_[i] = bucketIn(table_[k], hashOf(cellOf(x[i])));
+    }
 
     // Counting sort, stable: count, inclusive prefix sum (cellStart_[b] = end
     // of bucket b), then scatter backwards so cellStart_[b] becomes its start.
@@ -127,16 +138,28 @@ class HashGrid {
   }
 
  private:
-  // The table: a power of two, at least 2N buckets or, if fewer, at least
-  // the box's cells (then no two cells share a bucket, and each bucket is
-  // the cell's row-major index in the box, as with 2N: the same order). The
-  // box's cells are far fewer than 2N when the particles fill it (a tenth
-  // of N when a cell holds ten), and each kind of particle has a table.
+  // A kind's table: the box's cells exactly when they are at most 2 n (no
+  // two cells share a bucket, and each bucket is the cell's row-major index
+  // in the box); else a power of two, at least 2 n buckets (at least 64).
+  // The box's cells are far fewer than 2 n when n particles fill it (a tenth
+  // of n when a cell holds ten).
+  struct Table {
+    std::uint32_t offset = 0;  // its first bucket
+    std::size_t size = 0;      // its buckets
+  };
   static std::size_t tableSizeFor(std::size_t n, double boxCells) {
-    const double need = std::min(2.0 * static_cast<double>(n), boxCells);
+    const double need = 2.0 * static_cast<double>(n);
+    if (boxCells <= need) return static_cast<std::size_t>(boxCells);
     std::size_t t = 64;
     while (static_cast<double>(t) < need) t *= 2;
     return t;
+  }
+
+  // The bucket of a hash in a table: the hash itself in a table of the box's
+  // cells (a cell outside the box, which holds no particle, wraps around).
+  static std::uint32_t bucketIn(const Table& t, std::uint64_t hash) {
+    const std::uint64_t inTable = hash < t.size ? hash : hash % t.size;
+    return t.offset + static_cast<std::uint32_t>(inTable);
   }
 
   IVec<D> cellOf(const Vec<D>& x) const {
@@ -154,27 +177,28 @@ class HashGrid {
   void stencilAt(const IVec<D>& c, Stencil& st) const {
     st.cell = c;
     st.valid = true;
-    std::uint32_t seen[stencilSize];
-    int nSeen = 0;
-    for (const IVec<D>& offset : stencil_) {
-      const std::uint32_t b = bucketOf(IVec<D>(c + offset));
-      bool dup = false;
-      for (int k = 0; k < nSeen; ++k) dup |= seen[k] == b;
-      if (!dup) seen[nSeen++] = b;
-    }
-    st.count = ranges(seen, nSeen, 0, st.begin, st.end, 0);
-    if (ghostOffset_) st.count = ranges(seen, nSeen, ghostOffset_, st.begin, st.end, st.count);
-    st.wallCount = wallOffset_ ? ranges(seen, nSeen, wallOffset_, st.wallBegin, st.wallEnd, 0) : 0;
-    if (ghostWallOffset_) st.wallCount = ranges(seen, nSeen, ghostWallOffset_, st.wallBegin, st.wallEnd, st.wallCount);
+    std::uint64_t hash[stencilSize];
+    for (int s = 0; s < stencilSize; ++s) hash[s] = hashOf(IVec<D>(c + stencil_[s]));
+    st.count = ranges(hash, table_[0], st.begin, st.end, 0);
+    if (ghostOffset_) st.count = ranges(hash, table_[2], st.begin, st.end, st.count);
+    st.wallCount = wallOffset_ ? ranges(hash, table_[1], st.wallBegin, st.wallEnd, 0) : 0;
+    if (ghostWallOffset_) st.wallCount = ranges(hash, table_[3], st.wallBegin, st.wallEnd, st.wallCount);
   }
 
-  // Append to begin/end[count...] the non-empty particle ranges of buckets
-  // b + offset, merged where one directly follows the previous one. Returns
-  // the new number of ranges.
-  int ranges(const std::uint32_t* buckets, int nBuckets, std::uint32_t offset, std::uint32_t* begin,
-             std::uint32_t* end, int count) const {
-    for (int k = 0; k < nBuckets; ++k) {
-      const std::uint32_t b = buckets[k] + offset;
+  // Append to begin/end[count...] the non-empty particle ranges of the
+  // stencil's buckets in table t (a bucket two cells share, once), merged
+  // where one directly follows the previous one. Returns the new number of
+  // ranges.
+  int ranges(const std::uint64_t (&hash)[stencilSize], const Table& t, std::uint32_t* begin, std::uint32_t* end,
+             int count) const {
+    std::uint32_t seen[stencilSize];
+    int nSeen = 0;
+    for (int s = 0; s < stencilSize; ++s) {
+      const std::uint32_t b = bucketIn(t, hash[s]);
+      bool dup = false;
+      for (int k = 0; k < nSeen; ++k) dup |= seen[k] == b;
+      if (dup) continue;
+      seen[nSeen++] = b;
       if (cellStart_[b] == cellStart_[b + 1]) continue;
       if (count > 0 && end[count - 1] == cellStart_[b]) {
         end[count - 1] = cellStart_[b + 1];
@@ -210,10 +234,12 @@ class HashGrid {
     }
   }
 
-  std::uint32_t bucketOf(const IVec<D>& c) const {
+  // The cell's row-major index in the box (wrapping around, as unsigned,
+  // for a cell outside it).
+  std::uint64_t hashOf(const IVec<D>& c) const {
     std::uint64_t hash = 0;
     for (int d = 0; d < D; ++d) hash += static_cast<std::uint64_t>(c[d] - origin_[d]) * stride_[d];
-    return static_cast<std::uint32_t>(hash & mask_);
+    return hash;
   }
 
   Real cellSize_;
@@ -222,7 +248,8 @@ class HashGrid {
   IVec<D> origin_ = IVec<D>::Zero();
   std::uint64_t stride_[D] = {};
   double boxCells_ = 0;  // cells of the bounding box, margins included
-  std::uint64_t mask_ = 0;
+  static constexpr int kKinds = 4;  // fluid, walls, ghosts of fluid, ghosts of walls
+  Table table_[kKinds];
   std::uint32_t wallOffset_ = 0;       // first wall bucket (0: no walls)
   std::uint32_t ghostOffset_ = 0;      // first bucket of the ghosts of fluid (0: none)
   std::uint32_t ghostWallOffset_ = 0;  // first bucket of the ghosts of walls (0: none)
