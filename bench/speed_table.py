@@ -208,7 +208,7 @@ def main():
                 info[r] = (total, wall, nb, steps, dt, yn, ynb)
     print(f"{'scenario':13s} {'D':>1s} {'N':>7s} {'wall':>6s} {'nbrs':>5s} {'thr':>3s} {'p-s/CPU s':>10s} "
           f"{'p-s/s':>10s} {'CPU s/sim s':>11s} {'ns/p-s':>6s} {'ns/pair':>7s} {'RSS MB':>7s} {'B/p':>5s} {'yardstick':>10s} "
-          f"{'y N':>7s} {'y nbrs':>6s} {'y ns/pair':>9s} {'ratio':>6s}")
+          f"{'y N':>7s} {'y nbrs':>6s} {'y ns/pair':>9s} {'ratio':>6s} {'range':>9s}")
     bad = []
     for r in rows:
         s, n, t, tag = r
@@ -225,17 +225,22 @@ def main():
             dn = info[hi][0] - info[lo][0]
             if dn > 0:
                 bpp = f"{(statistics.median(results[hi]['rss']) - statistics.median(results[lo]['rss'])) / dn:.0f}"
+        # Each repeat's own ratio (its sph and yardstick runs were neighbours
+        # in time): their range shows how far the host's load moved it.
+        each = [c / y for c, y in zip(results[r]["cpu"], results[r]["ycpu"]) if math.isfinite(c / y)]
+        spread = f"{min(each):.2f}-{max(each):.2f}" if each else "-"
         cpu_per_sim = total / cpu / dt
         # CPU nanoseconds per listed neighbour (per pair seen from one side).
         ns_pair = 1e9 / (cpu * nb) if nb > 0 else float("nan")
         y_ns_pair = 1e9 / (ycpu * ynb) if ynb > 0 else float("nan")
         print(f"{SCENARIOS[s].name + tag:13s} {SCENARIOS[s].dim:1d} {total:7d} {wall:6d} {nb:5.1f} {t:3d} {fmt(cpu):>10s} "
               f"{fmt(wallps):>10s} {cpu_per_sim:11.1f} {1e9 / cpu:6.0f} {ns_pair:7.1f} {rss / 1e6:7.1f} {bpp:>5s} {fmt(ycpu):>10s} "
-              f"{yn:7d} {ynb:6.1f} {y_ns_pair:9.1f} {cpu / ycpu:6.2f}")
+              f"{yn:7d} {ynb:6.1f} {y_ns_pair:9.1f} {cpu / ycpu:6.2f} {spread:>9s}")
         figures = [cpu, wallps, ycpu, rss, nb, ynb, cpu_per_sim]
-        if not all(math.isfinite(f) and f > 0 for f in figures):
+        if not each or not all(math.isfinite(f) and f > 0 for f in figures):
             bad.append(f"{SCENARIOS[s].name}{tag} N={total} threads={t}")
-    print("# ratio = sph p-s per CPU s / yardstick p-s per CPU s (the same thread count, interleaved)")
+    print("# ratio = sph p-s per CPU s / yardstick p-s per CPU s (the same thread count, interleaved), of the"
+          " medians; range: the lowest and highest of the repeats' own ratios")
     print("# nbrs: sph's mean neighbours per particle (a wall particle lists only fluid neighbours);"
           " y nbrs: the yardstick's; ns/p-s: CPU ns per particle-step (flat in N when the cost grows"
           " linearly); ns/pair: CPU ns per particle-step and listed neighbour")
