@@ -159,7 +159,7 @@ BOOST_AUTO_TEST_CASE(sparse_points_with_hash_collisions_3d) {
 // (cells far apart sharing a bucket); the fluid's table is the box's cells,
 // as 2 n_fluid exceed them. The grid's bucket starts take at most (box
 // cells + 4 n_walls + 1) x 4 bytes, not one table of the box's cells per kind
-// (the 2D dam break at 214 910 particles: 27.5 -> 14.8 grid bytes per
+// (the 2D dam break at 214 910 particles: 27.5 -> about 15 grid bytes per
 // particle), and the pairs, by kind, are the brute force's.
 BOOST_AUTO_TEST_CASE(walls_get_a_table_of_their_own_size) {
   const Real radius = std::sqrt(10.0 / 20000);  // ten particles a cell at 20 000 in the unit square
