@@ -196,7 +196,16 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
       warn(std::string(kernel.label) + " at h/dx " + fmt(h / dx) + ": " + kernel.pairing);
   }
 
-  out << "  memory           " << fmt(static_cast<Real>(scene.bytesAllocated()) / (1 << 20)) << " MiB\n";
+  {
+    // Where the bytes are, per particle (ghosts' arrays counted, per owned particle).
+    const auto parts = scene.memoryParts();
+    const Real n = static_cast<Real>(std::max<std::size_t>(scene.globalCount(), 1));
+    const auto perParticle = [&](std::size_t b) { return fmt(static_cast<Real>(b) / n); };
+    out << "  memory           " << fmt(static_cast<Real>(parts.total()) / (1 << 20)) << " MiB, "
+        << perParticle(parts.total()) << " B per particle: fields " << perParticle(parts.fields) << ", re-sort scratch "
+        << perParticle(parts.particleScratch) << ", grid " << perParticle(parts.grid) << ", neighbour list "
+        << perParticle(parts.list) << ", pair loops " << perParticle(parts.pairLoops) << "\n";
+  }
   // A short timed sample on one thread (a run's threads = auto may do
   // better): one warm-up step, then 20 timed ones.
   omp_set_num_threads(1);

@@ -385,6 +385,8 @@ struct Particles : FieldArrays<D> {
     refreshLocalGhosts();
   }
 
+  // The fields' arrays alone [bytes].
+  std::size_t fieldBytes() const { return FieldArrays<D>::bytesAllocated(); }
   // Every array of the particles, the scratch arrays included [bytes].
   std::size_t bytesAllocated() const {
     const auto bytes = [](const auto& array) {
