@@ -91,19 +91,18 @@ class HashGrid {
       const std::size_t count = end[k] - from;
       from = end[k];
       table_[k] = {};
-      if (count == 0 && k > 0) continue;  // absent (offset 0); the fluid's table is always there
+      if (count == 0 && k != kFluid) continue;  // absent: size 0
       table_[k].offset = static_cast<std::uint32_t>(used);
       table_[k].size = tableSizeFor(count, boxCells_);
       used += table_[k].size;
     }
-    wallOffset_ = table_[1].offset, ghostOffset_ = table_[2].offset, ghostWallOffset_ = table_[3].offset;
     if (used >= UINT32_MAX) throw std::length_error("HashGrid: 2^32 - 1 buckets or more");
     if (cellStart_.size() != used + 1) cellStart_.assign(used + 1, 0);
     bucket_.resize(n);
     order_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) {
-      const int k = i < fluidCount ? 0 : i < ownedCount ? 1 : i < ghostFluidEnd ? 2 : 3;
+      const Kind k = i < fluidCount ? kFluid : i < ownedCount ? kWalls : i < ghostFluidEnd ? kFluidGhosts : kWallGhosts;
       bucket_[i] = bucketIn(table_[k], hashOf(cellOf(x[i])));
     }
 
@@ -120,7 +119,7 @@ class HashGrid {
   const std::vector<std::uint32_t>& order() const { return order_; }
   // Whether the last build() had walls, owned or ghosts (a rank of a
   // decomposition may hold halos of walls and no walls of its own).
-  bool hasWalls() const { return wallOffset_ != 0 || ghostWallOffset_ != 0; }
+  bool hasWalls() const { return table_[kWalls].size != 0 || table_[kWallGhosts].size != 0; }
 
   // The particle ranges of the (distinct) buckets around one cell. Particles
   // of the same cell share it, so loops over sorted particles compute it once
@@ -187,10 +186,11 @@ class HashGrid {
     st.valid = true;
     std::uint64_t hash[stencilSize];
     for (int s = 0; s < stencilSize; ++s) hash[s] = hashOf(IVec<D>(c + stencil_[s]));
-    st.count = ranges(hash, table_[0], st.begin, st.end, 0);
-    if (ghostOffset_) st.count = ranges(hash, table_[2], st.begin, st.end, st.count);
-    st.wallCount = wallOffset_ ? ranges(hash, table_[1], st.wallBegin, st.wallEnd, 0) : 0;
-    if (ghostWallOffset_) st.wallCount = ranges(hash, table_[3], st.wallBegin, st.wallEnd, st.wallCount);
+    st.count = ranges(hash, table_[kFluid], st.begin, st.end, 0);
+    if (table_[kFluidGhosts].size) st.count = ranges(hash, table_[kFluidGhosts], st.begin, st.end, st.count);
+    st.wallCount = table_[kWalls].size ? ranges(hash, table_[kWalls], st.wallBegin, st.wallEnd, 0) : 0;
+    if (table_[kWallGhosts].size)
+      st.wallCount = ranges(hash, table_[kWallGhosts], st.wallBegin, st.wallEnd, st.wallCount);
   }
 
   // Append to begin/end[count...] the non-empty particle ranges of the
@@ -256,11 +256,10 @@ class HashGrid {
   IVec<D> origin_ = IVec<D>::Zero();
   std::uint64_t stride_[D] = {};
   double boxCells_ = 0;  // cells of the bounding box, margins included
-  static constexpr int kKinds = 4;  // fluid, walls, ghosts of fluid, ghosts of walls
+  // The kinds' tables, in this order; a kind absent from the last build has
+  // a table of size 0 (the fluid's is always there).
+  enum Kind { kFluid, kWalls, kFluidGhosts, kWallGhosts, kKinds };
   Table table_[kKinds];
-  std::uint32_t wallOffset_ = 0;       // first wall bucket (0: no walls)
-  std::uint32_t ghostOffset_ = 0;      // first bucket of the ghosts of fluid (0: none)
-  std::uint32_t ghostWallOffset_ = 0;  // first bucket of the ghosts of walls (0: none)
   std::vector<std::uint32_t> cellStart_;  // bucket b: [cellStart_[b], cellStart_[b+1])
   std::vector<std::uint32_t> bucket_;
   std::vector<std::uint32_t> order_;
