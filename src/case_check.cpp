@@ -202,9 +202,9 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     const Real n = static_cast<Real>(std::max<std::size_t>(scene.globalCount(), 1));
     const auto perParticle = [&](std::size_t b) { return fmt(static_cast<Real>(b) / n); };
     out << "  memory           " << fmt(static_cast<Real>(parts.total()) / (1 << 20)) << " MiB, "
-        << perParticle(parts.total()) << " B per particle: fields " << perParticle(parts.fields) << ", re-sort scratch "
+        << perParticle(parts.total()) << " B per particle: fields " << perParticle(parts.fields) << ", re-sort and pair-loop scratch "
         << perParticle(parts.particleScratch) << ", grid " << perParticle(parts.grid) << ", neighbour list "
-        << perParticle(parts.list) << ", pair loops " << perParticle(parts.pairLoops) << "\n";
+        << perParticle(parts.list) << "\n";
   }
   // A short timed sample on one thread (a run's threads = auto may do
   // better): one warm-up step, then 20 timed ones.

@@ -216,8 +216,8 @@ void checkDensityRateBlocks() {
       choice.delta = form == 0 ? 0.0 : 0.1;
       choice.hydrostatic = form == 2;
       const DensityDiffusion<D> diffusion = DensityDiffusion<D>::build(choice, c.h, c.c0, c.rho0, gravityVector<D>(c));
-      PairScratch scratch;
-      const ParticlePrologue<D> prologue = scratch.fit<D>(P.totalSize(), false, diffusion.active());
+      Particles<D> lender = P;  // lends the arrays the loops' prologue fills
+      const ParticlePrologue<D> prologue = pairArrays(lender, false, diffusion.active());
       DensityDiffusion<D> here = diffusion;
       here.volume = prologue.volume;
       Particles<D> blocks = P, scalar = P;

@@ -222,8 +222,8 @@ void checkForceBlocks() {
     const WendlandC2<D> kernel(c.h);
     for (const Real beta : {0.0, 1.0})
       for (const bool xsph : {false, true}) {
-        PairScratch scratch;
-        const ParticlePrologue<D> prologue = scratch.fit<D>(P.totalSize(), true, false);
+        Particles<D> lender = P;  // lends the arrays the loops' prologue fills
+        const ParticlePrologue<D> prologue = pairArrays(lender, true, false);
         const SymmetricPressure pressure{false, prologue.pOverRho2};
         const MonaghanViscosity<WendlandC2<D>> viscosity{kernel, 0.02, beta};
         const auto wallPairs =

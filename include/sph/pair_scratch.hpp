@@ -1,5 +1,5 @@
 // The per-particle values a pair loop forms before its pairs (p/rho^2,
-// m/rho), and the arrays that hold them between runs.
+// m/rho), in arrays the particles lend.
 #pragma once
 
 #include "sph/particles.hpp"
@@ -15,7 +15,7 @@ namespace sph {
 // ghosts included), so that no pair divides for them: p/rho^2 of the
 // pressure term (symmetric_pressure.hpp) and the volume m/rho of the
 // density diffusion (density_diffusion.hpp). A null array is not formed.
-// The arrays are a PairScratch's, sized to the particles (PairScratch::fit).
+// The arrays are lent by the particles (pairArrays, below).
 template <int D>
 struct ParticlePrologue {
   Real* pOverRho2 = nullptr;
@@ -27,21 +27,20 @@ struct ParticlePrologue {
   }
 };
 
-// The arrays of a ParticlePrologue, kept between runs (so the step loop does
-// not allocate once they have grown to the particle count): the model's,
-// shared by its passes (StepContext::pairScratch; each pass fills what it
-// reads before its pairs), or a pass's own when run alone.
-struct PairScratch {
-  std::vector<Real> pOverRho2, volume;
-  std::size_t bytesAllocated() const { return (pOverRho2.capacity() + volume.capacity()) * sizeof(Real); }
-  // The prologue of a run over n particles (ghosts included): the arrays
-  // asked for, sized to n.
-  template <int D>
-  ParticlePrologue<D> fit(std::size_t n, bool pressure, bool diffusion) {
-    if (pressure && pOverRho2.size() < n) pOverRho2.resize(n);
-    if (diffusion && volume.size() < n) volume.resize(n);
-    return {pressure ? pOverRho2.data() : nullptr, diffusion ? volume.data() : nullptr};
-  }
-};
+// The prologue of a pair loop over all of P's particles (ghosts included),
+// with the arrays asked for in the particles' re-sort scratch
+// (Particles::lendScratch): the re-sort needs it only inside permute(), a
+// pass only between its prologue and its last pair, and every pass forms
+// the arrays it reads before its pairs, so one buffer serves both (16 bytes
+// per particle fewer in 2D and 3D than arrays of their own). Call it
+// outside a parallel region; the arrays are valid until P's next permute()
+// or lendScratch().
+template <int D>
+ParticlePrologue<D> pairArrays(Particles<D>& P, bool pressure, bool diffusion) {
+  const std::size_t n = P.totalSize();
+  const std::size_t count = (pressure ? n : 0) + (diffusion ? n : 0);
+  Real* base = count > 0 ? P.lendScratch(count) : nullptr;
+  return {pressure ? base : nullptr, diffusion ? base + (pressure ? n : 0) : nullptr};
+}
 
 }  // namespace sph

@@ -37,7 +37,8 @@
 // at full water physics, a scratch array per value type 33; this costs 16,
 // 24 in 3D.) Matrices (CSPM's, carried by a rebuild) have a scratch of their
 // own. Rates and derived fields are stale after it until the model
-// evaluates again.
+// evaluates again. Between re-sorts the scratch is lent to the pair loops
+// for their per-particle arrays (lendScratch; pair_scratch.hpp).
 #pragma once
 
 #include "sph/fields.hpp"
@@ -383,6 +384,18 @@ struct Particles : FieldArrays<D> {
     ghostSource_.swap(sourceShadow_);
     ghostShift_.swap(shiftShadow_);
     refreshLocalGhosts();
+  }
+
+  // The re-sort's scratch lent as `reals` numbers: the pair loops'
+  // per-particle arrays (p/rho^2, m/rho; pairArrays in pair_scratch.hpp),
+  // which live only inside a pass, as the scratch's use lives only inside
+  // permute(). Grown when it holds fewer (the step loop does not allocate
+  // once the particle count settles); call it outside a parallel region.
+  // The numbers do not survive the next permute() or lendScratch().
+  Real* lendScratch(std::size_t reals) {
+    const std::size_t entries = (reals + D - 1) / D;
+    if (scratch_.vector.size() < entries) growTo(scratch_.vector, entries);
+    return scratch_.vector.data()->data();
   }
 
   // The fields' arrays alone [bytes].

@@ -249,21 +249,21 @@ class Scene {
 
   // Where the bytes of the scene's arrays are, the ghosts' included (all
   // ranks': collective): the particles' fields, the rest of the particles'
-  // arrays (the re-sort's scratch, the ghosts' bookkeeping), the grid, the
-  // neighbour list and the pair loops' per-particle arrays (p/rho^2, m/rho).
+  // arrays (the re-sort's scratch, which the pair loops borrow for their
+  // per-particle p/rho^2 and m/rho, and the ghosts' bookkeeping), the grid
+  // and the neighbour list.
   struct MemoryParts {
-    std::size_t fields = 0, particleScratch = 0, grid = 0, list = 0, pairLoops = 0;
-    std::size_t total() const { return fields + particleScratch + grid + list + pairLoops; }
+    std::size_t fields = 0, particleScratch = 0, grid = 0, list = 0;
+    std::size_t total() const { return fields + particleScratch + grid + list; }
   };
   MemoryParts memoryParts() const {
-    std::int64_t b[5] = {static_cast<std::int64_t>(P_.fieldBytes()),
+    std::int64_t b[4] = {static_cast<std::int64_t>(P_.fieldBytes()),
                          static_cast<std::int64_t>(P_.bytesAllocated() - P_.fieldBytes()),
                          static_cast<std::int64_t>(grid_.bytesAllocated()),
-                         static_cast<std::int64_t>(neighbours_.bytesAllocated()),
-                         static_cast<std::int64_t>(model_.bytesAllocated())};
-    mpi::allSum(comm_, b, 5);
+                         static_cast<std::int64_t>(neighbours_.bytesAllocated())};
+    mpi::allSum(comm_, b, 4);
     const auto u = [](std::int64_t v) { return static_cast<std::size_t>(v); };
-    return {u(b[0]), u(b[1]), u(b[2]), u(b[3]), u(b[4])};
+    return {u(b[0]), u(b[1]), u(b[2]), u(b[3])};
   }
   // Every array of the scene, the ghosts' included [bytes] (collective).
   std::size_t bytesAllocated() const { return memoryParts().total(); }

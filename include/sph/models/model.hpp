@@ -23,7 +23,6 @@
 #pragma once
 
 #include "sph/models/pass.hpp"
-#include "sph/pair_scratch.hpp"
 #include "sph/terms/equation_of_state_fwd.hpp"
 
 #include <memory>
@@ -130,8 +129,6 @@ class Model {
   unsigned executedTerms() const { return executed_ | executedAfterStep_; }
   // What the kernel corrections did so far (step_context.hpp).
   const CorrectionCounts& correctionCounts() const { return counts_; }
-  // The passes' shared per-particle arrays (pair_scratch.hpp) [bytes].
-  std::size_t bytesAllocated() const { return pairScratch_.bytesAllocated(); }
 
   // The potential energy of the conservative body forces (gravity, the
   // star's attraction), for energy.csv.
@@ -160,7 +157,6 @@ class Model {
   unsigned runPasses(const PassList<D>& passes, Particles<D>& P, const NeighbourList<D>& neighbours,
                      StepContext ctx) const {
     ctx.counts = &counts_;
-    ctx.pairScratch = &pairScratch_;
     unsigned ran = 0;
     for (const auto& pass : passes) {
       ran |= pass->run(P, neighbours, ctx);
@@ -182,7 +178,6 @@ class Model {
   mutable unsigned executed_ = 0, executedAfterStep_ = 0, densityRateBits_ = 0;
   mutable bool evaluated_ = false;
   mutable CorrectionCounts counts_;
-  mutable PairScratch pairScratch_;  // one set of per-particle pair arrays for all the passes
 };
 
 extern template class Model<2>;

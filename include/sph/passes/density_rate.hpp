@@ -39,7 +39,6 @@ struct DensityRatePass {
   DensityDiffusion<D> diffusion;  // coefficient 0: off
   WallSums walls{};               // wall pairs (inSums), the walls' own rates (densityRates)
   OptionalTerms terms{};          // its density-rate-only ones run here
-  mutable PairScratch scratch{};  // m/rho of every particle for the diffusion when run without the model's (pair_scratch.hpp)
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const;
   // run() reads x, m and v (rho for the diffusion, what the optional
@@ -53,9 +52,8 @@ struct DensityRatePass {
 
 // Defined here, instantiated once (src/instantiate_forces_*.cpp).
 template <int D>
-unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-  PairScratch& arrays = ctx.pairScratch ? *ctx.pairScratch : scratch;
-  const ParticlePrologue<D> prologue = arrays.fit<D>(P.totalSize(), false, diffusion.active());
+unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
+  const ParticlePrologue<D> prologue = pairArrays(P, false, diffusion.active());
   DensityDiffusion<D> diffusionHere = diffusion;
   diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(

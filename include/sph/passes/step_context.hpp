@@ -5,8 +5,6 @@
 
 namespace sph {
 
-struct PairScratch;
-
 // What the kernel corrections did, summed over a scene's evaluations (the
 // run summary prints them): particle-evaluations of the CSPM correction and
 // how many fell back to the uncorrected gradient; density re-initialisations
@@ -31,8 +29,6 @@ struct StepContext {
   // in the particles (shiftSum, shiftGrad; terms/shifting_sums.hpp).
   bool shiftSumsGiven = false;
   CorrectionCounts* counts = nullptr;  // where passes add their counts (the model's; none: not counted)
-  // The model's per-particle pair arrays, shared by its passes (pair_scratch.hpp); none: a pass's own.
-  PairScratch* pairScratch = nullptr;
 };
 
 }  // namespace sph

@@ -126,7 +126,6 @@ struct WcsphForcePass {
     bool on = false;
     Real spacing = 0, rho0 = 0;
   } shifting{};
-  mutable PairScratch scratch{};      // p/rho^2 and m/rho of every particle when run without the model's (pair_scratch.hpp)
 
   unsigned run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const;
   // run() reads x, m, rho and p; v for the viscosity (vWall of the wall
@@ -155,13 +154,12 @@ struct WcsphForcePass {
 // Defined here, instantiated once (src/instantiate_*.cpp).
 template <int D>
 unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext& ctx) const {
-  PairScratch& arrays = ctx.pairScratch ? *ctx.pairScratch : scratch;
   // The density rate is this loop's unless the integrator computes it apart.
   const bool rateHere = continuity && !ctx.densityRateApart;
   const bool wallRatesHere = walls.densityRates && rateHere;
   DensityDiffusion<D> diffusionHere = diffusion;
   if (!rateHere) diffusionHere.coefficient = 0;
-  const ParticlePrologue<D> prologue = arrays.fit<D>(P.totalSize(), true, diffusionHere.active());
+  const ParticlePrologue<D> prologue = pairArrays(P, true, diffusionHere.active());
   diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(
       [&](const auto& k, const auto& visc) {
