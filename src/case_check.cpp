@@ -202,7 +202,7 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
     const Real n = static_cast<Real>(std::max<std::size_t>(scene.globalCount(), 1));
     const auto perParticle = [&](std::size_t b) { return fmt(static_cast<Real>(b) / n); };
     out << "  memory           " << fmt(static_cast<Real>(parts.total()) / (1 << 20)) << " MiB, "
-        << perParticle(parts.total()) << " B per particle: fields " << perParticle(parts.fields) << ", re-sort and pair-loop scratch "
+        << perParticle(parts.total()) << " B per particle: fields " << perParticle(parts.fields) << ", scratch "
         << perParticle(parts.particleScratch) << ", grid " << perParticle(parts.grid) << ", neighbour list "
         << perParticle(parts.list) << "\n";
   }

@@ -54,8 +54,9 @@ BOOST_AUTO_TEST_CASE(a_sound_case_gets_its_figures_and_no_warning) {
 //            each in 2D, plus rho, drho, p, m, c (Monaghan's sound speed)
 //            and id, 8 B each, plus kind, 1 B: 129 B;
 //   scratch: one 2D vector per particle for the re-sort, the ghosts'
-//            bookkeeping (none: no periodic axis), and the pair loops'
-//            p/rho^2 and m/rho in the same bytes: 16 B.
+//            bookkeeping (none: no periodic axis), and in the same bytes
+//            the pair loops' p/rho^2 and m/rho and the grid sort's bucket
+//            numbers: 16 B.
 // A regression gate on the layout: a field allocated that the physics does
 // not use (vWall for Monaghan's viscosity, say), or pair-loop arrays of
 // their own (16 B more), fail it.
@@ -86,7 +87,7 @@ BOOST_AUTO_TEST_CASE(memory_is_told_by_part) {
   for (const auto& [key, value] : part) sum += value;
   BOOST_TEST(sum == total, boost::test_tools::tolerance(0.01));  // each printed to 3 figures
   BOOST_TEST(part["fields"] == 129.0);
-  BOOST_TEST(part["re-sort and pair-loop scratch"] == 16.0);
+  BOOST_TEST(part["scratch"] == 16.0);
   BOOST_TEST(part["grid"] > 0.0);
   BOOST_TEST(part["neighbour list"] > 0.0);
 }

@@ -276,6 +276,33 @@ BOOST_AUTO_TEST_CASE(resort_keeps_particle_data) {
   }
 }
 
+// The grid's build may keep each particle's bucket number in bytes the
+// caller lends (the scene lends the particles' re-sort scratch, idle until
+// the permute that applies the order): the same order as with the grid's
+// own array, 4 bytes per particle fewer in the grid, and the permute that
+// then reuses those bytes keeps every particle's data.
+BOOST_AUTO_TEST_CASE(bucket_numbers_in_lent_bytes) {
+  Particles<2> P = particlesAt<2>(uniform<2>(5000, 0, 1, 5));
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    P.v[i] = Vec<2>(static_cast<Real>(i), -static_cast<Real>(i));
+    P.m[i] = 1.0 + static_cast<Real>(i);
+  }
+  const std::vector<Vec<2>> x0 = P.x;
+  HashGrid<2> own(0.03), lent(0.03);
+  own.build(P.x);
+  lent.build(P.x, SIZE_MAX, SIZE_MAX, SIZE_MAX, reinterpret_cast<unsigned char*>(P.lendScratch((P.size() + 1) / 2)));
+  BOOST_TEST(lent.order() == own.order());
+  BOOST_TEST(own.bytesAllocated() - lent.bytesAllocated() == 4 * P.size());
+  P.permute(lent.order());
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    const auto i = static_cast<std::size_t>(P.id[k]);
+    BOOST_TEST_REQUIRE(i == own.order()[k]);
+    BOOST_TEST_REQUIRE((P.x[k] == x0[i]));
+    BOOST_TEST_REQUIRE(P.v[k][0] == static_cast<Real>(i));
+    BOOST_TEST_REQUIRE(P.m[k] == 1.0 + static_cast<Real>(i));
+  }
+}
+
 // The list's memory is the part of its buffer ever written: the fill, one
 // particle's candidates and 4096 entries ahead (NeighbourList::grow); the
 // first build reserves an upper bound (every candidate), which is never

@@ -51,6 +51,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -76,9 +77,13 @@ class HashGrid {
   // particle that goes to position k; apply it with Particles::permute().
   // Particles [fluidCount, ownedCount) are walls, [ownedCount,
   // ghostFluidEnd) ghosts of fluid and [ghostFluidEnd, n) ghosts of walls
-  // (none of each by default).
+  // (none of each by default). bucketSpace: at least 4 n bytes the caller
+  // lends for each particle's bucket number, which only the sort reads
+  // (the scene lends the particles' re-sort scratch, idle until the
+  // permute() that follows: 4 bytes per particle fewer); nullptr: the
+  // grid's own array.
   void build(const std::vector<Vec<D>>& x, std::size_t fluidCount = SIZE_MAX, std::size_t ownedCount = SIZE_MAX,
-             std::size_t ghostFluidEnd = SIZE_MAX) {
+             std::size_t ghostFluidEnd = SIZE_MAX, unsigned char* bucketSpace = nullptr) {
     const std::size_t n = x.size();
     ownedCount = std::min(ownedCount, n);
     fluidCount = std::min(fluidCount, ownedCount);
@@ -98,22 +103,34 @@ class HashGrid {
     }
     if (used >= UINT32_MAX) throw std::length_error("HashGrid: 2^32 - 1 buckets or more");
     if (cellStart_.size() != used + 1) cellStart_.assign(used + 1, 0);
-    bucket_.resize(n);
+    if (!bucketSpace) {
+      bucket_.resize(n);
+      bucketSpace = reinterpret_cast<unsigned char*>(bucket_.data());
+    }
+    // (Through memcpy: the lent bytes held other types before.)
+    const auto setBucket = [bucketSpace](std::size_t i, std::uint32_t b) {
+      std::memcpy(bucketSpace + i * sizeof b, &b, sizeof b);
+    };
+    const auto bucketOf = [bucketSpace](std::size_t i) {
+      std::uint32_t b;
+      std::memcpy(&b, bucketSpace + i * sizeof b, sizeof b);
+      return b;
+    };
     order_.resize(n);
 #pragma omp parallel for schedule(static) if (n >= kMinParallelSize)
     for (std::size_t i = 0; i < n; ++i) {
       const Kind k = i < fluidCount ? kFluid : i < ownedCount ? kWalls : i < ghostFluidEnd ? kFluidGhosts : kWallGhosts;
-      bucket_[i] = bucketIn(table_[k], hashOf(cellOf(x[i])));
+      setBucket(i, bucketIn(table_[k], hashOf(cellOf(x[i]))));
     }
 
     // Counting sort, stable: count, inclusive prefix sum (cellStart_[b] = end
     // of bucket b), then scatter backwards so cellStart_[b] becomes its start.
     const std::size_t buckets = cellStart_.size() - 1;
     std::fill(cellStart_.begin(), cellStart_.end(), 0u);
-    for (std::size_t i = 0; i < n; ++i) ++cellStart_[bucket_[i]];
+    for (std::size_t i = 0; i < n; ++i) ++cellStart_[bucketOf(i)];
     for (std::size_t b = 1; b < buckets; ++b) cellStart_[b] += cellStart_[b - 1];
     cellStart_[buckets] = static_cast<std::uint32_t>(n);
-    for (std::size_t i = n; i-- > 0;) order_[--cellStart_[bucket_[i]]] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = n; i-- > 0;) order_[--cellStart_[bucketOf(i)]] = static_cast<std::uint32_t>(i);
   }
 
   const std::vector<std::uint32_t>& order() const { return order_; }
@@ -261,7 +278,7 @@ class HashGrid {
   enum Kind { kFluid, kWalls, kFluidGhosts, kWallGhosts, kKinds };
   Table table_[kKinds];
   std::vector<std::uint32_t> cellStart_;  // bucket b: [cellStart_[b], cellStart_[b+1])
-  std::vector<std::uint32_t> bucket_;
+  std::vector<std::uint32_t> bucket_;  // the bucket numbers when build() is lent no space
   std::vector<std::uint32_t> order_;
 };
 

@@ -38,7 +38,8 @@
 // 24 in 3D.) Matrices (CSPM's, carried by a rebuild) have a scratch of their
 // own. Rates and derived fields are stale after it until the model
 // evaluates again. Between re-sorts the scratch is lent to the pair loops
-// for their per-particle arrays (lendScratch; pair_scratch.hpp).
+// for their per-particle arrays and to the grid's build for its bucket
+// numbers (lendScratch).
 #pragma once
 
 #include "sph/fields.hpp"
@@ -386,16 +387,20 @@ struct Particles : FieldArrays<D> {
     refreshLocalGhosts();
   }
 
-  // The re-sort's scratch lent as `reals` numbers: the pair loops'
-  // per-particle arrays (p/rho^2, m/rho; pairArrays in pair_scratch.hpp),
-  // which live only inside a pass, as the scratch's use lives only inside
-  // permute(). Grown when it holds fewer (the step loop does not allocate
-  // once the particle count settles); call it outside a parallel region.
-  // The numbers do not survive the next permute() or lendScratch().
+  // The re-sort's scratch lent as `reals` numbers (nullptr for none), to
+  // arrays that live only between two uses of the scratch, as its own use
+  // lives only inside permute(): the pair loops' per-particle arrays
+  // (p/rho^2, m/rho; pairArrays in pair_scratch.hpp), formed and read
+  // inside one pass, and the grid's bucket numbers, written and read by the
+  // grid's build before the permute() that applies its order
+  // (sortByCell). Grown when it holds fewer (the step loop does not
+  // allocate once the particle count settles); call it outside a parallel
+  // region. The numbers do not survive the next permute() or lendScratch().
   Real* lendScratch(std::size_t reals) {
+    static_assert(sizeof(Vec<D>) == D * sizeof(Real), "the scratch's vectors must be unpadded to lend their numbers");
     const std::size_t entries = (reals + D - 1) / D;
     if (scratch_.vector.size() < entries) growTo(scratch_.vector, entries);
-    return scratch_.vector.data()->data();
+    return scratch_.vector.empty() ? nullptr : scratch_.vector.data()->data();
   }
 
   // The fields' arrays alone [bytes].
