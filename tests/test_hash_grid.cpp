@@ -254,26 +254,39 @@ BOOST_AUTO_TEST_CASE(neighbour_list_survives_changing_thread_counts) {
   omp_set_num_threads(before);
 }
 
-// The sort is a permutation: every particle keeps its data.
-BOOST_AUTO_TEST_CASE(resort_keeps_particle_data) {
-  Particles<2> P = particlesAt<2>(uniform<2>(500, 0, 1, 9));
+// n random particles in the unit square, each with its index as id, v (i, -i)
+// and m 1 + i, so that a permutation's result can be checked.
+Particles<2> numberedParticles(std::size_t n, unsigned seed) {
+  Particles<2> P = particlesAt<2>(uniform<2>(n, 0, 1, seed));
   for (std::size_t i = 0; i < P.size(); ++i) {
     P.v[i] = Vec<2>(static_cast<Real>(i), -static_cast<Real>(i));
     P.m[i] = 1.0 + static_cast<Real>(i);
   }
+  return P;
+}
+
+// Whether P, permuted by `order`, holds at k the data of numbered particle
+// order[k] (positions x0 before the permutation): every particle once.
+bool keptTheirData(const Particles<2>& P, const std::vector<Vec<2>>& x0, const std::vector<std::uint32_t>& order) {
+  std::vector<bool> seen(P.size(), false);
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    const auto i = static_cast<std::size_t>(P.id[k]);
+    if (i != order[k] || seen[i] || P.x[k] != x0[i] || P.v[k][0] != static_cast<Real>(i) ||
+        P.m[k] != 1.0 + static_cast<Real>(i))
+      return false;
+    seen[i] = true;
+  }
+  return true;
+}
+
+// The sort is a permutation: every particle keeps its data.
+BOOST_AUTO_TEST_CASE(resort_keeps_particle_data) {
+  Particles<2> P = numberedParticles(500, 9);
   const std::vector<Vec<2>> x0 = P.x;
   HashGrid<2> grid(0.05);
   grid.build(P.x);
   P.permute(grid.order());
-  std::vector<bool> seen(P.size(), false);
-  for (std::size_t k = 0; k < P.size(); ++k) {
-    const auto i = static_cast<std::size_t>(P.id[k]);
-    BOOST_TEST(!seen[i]);
-    seen[i] = true;
-    BOOST_TEST((P.x[k] == x0[i]));
-    BOOST_TEST(P.v[k][0] == static_cast<Real>(i));
-    BOOST_TEST(P.m[k] == 1.0 + static_cast<Real>(i));
-  }
+  BOOST_TEST(keptTheirData(P, x0, grid.order()));
 }
 
 // The grid's build may keep each particle's bucket number in bytes the
@@ -282,11 +295,7 @@ BOOST_AUTO_TEST_CASE(resort_keeps_particle_data) {
 // own array, 4 bytes per particle fewer in the grid, and the permute that
 // then reuses those bytes keeps every particle's data.
 BOOST_AUTO_TEST_CASE(bucket_numbers_in_lent_bytes) {
-  Particles<2> P = particlesAt<2>(uniform<2>(5000, 0, 1, 5));
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    P.v[i] = Vec<2>(static_cast<Real>(i), -static_cast<Real>(i));
-    P.m[i] = 1.0 + static_cast<Real>(i);
-  }
+  Particles<2> P = numberedParticles(5000, 5);
   const std::vector<Vec<2>> x0 = P.x;
   HashGrid<2> own(0.03), lent(0.03);
   own.build(P.x);
@@ -294,13 +303,7 @@ BOOST_AUTO_TEST_CASE(bucket_numbers_in_lent_bytes) {
   BOOST_TEST(lent.order() == own.order());
   BOOST_TEST(own.bytesAllocated() - lent.bytesAllocated() == 4 * P.size());
   P.permute(lent.order());
-  for (std::size_t k = 0; k < P.size(); ++k) {
-    const auto i = static_cast<std::size_t>(P.id[k]);
-    BOOST_TEST_REQUIRE(i == own.order()[k]);
-    BOOST_TEST_REQUIRE((P.x[k] == x0[i]));
-    BOOST_TEST_REQUIRE(P.v[k][0] == static_cast<Real>(i));
-    BOOST_TEST_REQUIRE(P.m[k] == 1.0 + static_cast<Real>(i));
-  }
+  BOOST_TEST(keptTheirData(P, x0, own.order()));
 }
 
 // The list's memory is the part of its buffer ever written: the fill, one
