@@ -16,6 +16,7 @@
 #include "sph/thread_tuner.hpp"
 
 #include <omp.h>
+#include <malloc.h>
 
 #include <cstdlib>
 #include <memory>
@@ -102,6 +103,12 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   RunOutput<D> output(dir, c.name, info, report.record(), c.cfl > 0, ProbeFiles<D>(c, makeProbeKernel<D>(c)));
   if (resuming) output.resumeAfter(resumeStep, resumeTime);
 
+  // The set-up's freed heap (the particle generator's arrays, the first
+  // sort's) goes back to the system before the run: nothing trims the
+  // heap later (vtp_io.cpp keeps zlib's buffers on it), so it would stay
+  // resident to the end. 2D dam break, packed list, 24 818 -> 214 910
+  // particles: peak RSS 191.2 -> 186.1 bytes per added particle.
+  malloc_trim(0);
   const RunTotals totals =
       driveRun<D>(c, scene, output, report, tuner, catalyst, info, startTime, resumeTime, resuming, err);
   if (totals.status == kWriteFailed) return kWriteFailed;
