@@ -107,7 +107,7 @@ int runCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   // sort's) goes back to the system before the run: nothing trims the
   // heap later (vtp_io.cpp keeps zlib's buffers on it), so it would stay
   // resident to the end. 2D dam break, packed list, 24 818 -> 214 910
-  // particles: peak RSS 191.2 -> 186.1 bytes per added particle.
+  // particles: peak RSS 192.7 -> 186.9 bytes per added particle.
   malloc_trim(0);
   const RunTotals totals =
       driveRun<D>(c, scene, output, report, tuner, catalyst, info, startTime, resumeTime, resuming, err);

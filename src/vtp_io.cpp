@@ -20,6 +20,7 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <utility>
@@ -95,17 +96,25 @@ vtkSmartPointer<vtkDataArray> integerArray(const char* name, const std::vector<T
   return arr;
 }
 
-// One vertex cell per point: offsets 0..n, connectivity 0..n-1, which is
-// the offsets' first n entries (one buffer for both). In 32-bit integers
-// when n allows (the writer then keeps them as they are, Int32 in the
-// file, and copies n offsets of 4 bytes, not 8: peak RSS of a 1-step run
-// per added particle 186.9 -> 181.2 B in 2D, 254.3 -> 250.7 in 3D).
+// One vertex cell per point: offsets 0..n, connectivity 0..n-1. In 32-bit
+// integers when n allows (the writer then keeps them as they are, Int32 in
+// the file, and copies n offsets of 4 bytes, not 8: peak RSS of a 1-step
+// run per added particle 186.9 -> 181.2 B in 2D, 254.3 -> 250.7 in 3D).
+// shareBuffer: the connectivity is the offsets' first n entries, a view
+// that lives only as long as the offsets array (the file writers, whose
+// polydata dies at once); else an array of its own (Catalyst, whose
+// pipeline may keep the connectivity alone).
 template <class Array>
-void vertexCells(vtkCellArray* verts, vtkIdType n) {
+void vertexCells(vtkCellArray* verts, vtkIdType n, bool shareBuffer) {
   vtkNew<Array> offsets, connectivity;
   offsets->SetNumberOfValues(n + 1);
   for (vtkIdType i = 0; i <= n; ++i) offsets->SetValue(i, static_cast<typename Array::ValueType>(i));
-  connectivity->SetArray(offsets->GetPointer(0), n, 1);
+  if (shareBuffer) {
+    connectivity->SetArray(offsets->GetPointer(0), n, 1);
+  } else {
+    connectivity->SetNumberOfValues(n);
+    std::copy(offsets->GetPointer(0), offsets->GetPointer(0) + n, connectivity->GetPointer(0));
+  }
   verts->SetData(offsets, connectivity);
 }
 
@@ -157,8 +166,8 @@ vtkSmartPointer<vtkPolyData> snapshotPolyData(const Particles<D>& P, const Snaps
     }
   }
   vtkNew<vtkCellArray> verts;
-  if (n < INT32_MAX) vertexCells<vtkTypeInt32Array>(verts, n);
-  else vertexCells<vtkTypeInt64Array>(verts, n);
+  if (n < INT32_MAX) vertexCells<vtkTypeInt32Array>(verts, n, borrow);
+  else vertexCells<vtkTypeInt64Array>(verts, n, borrow);
 
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(points);

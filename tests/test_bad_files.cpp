@@ -259,15 +259,22 @@ BOOST_AUTO_TEST_CASE(flipped_bytes) {
 // VTK sizes the connectivity by the last cell offset, a data value: a
 // damaged one made VTK abort (uncompressed and LZ4 data have no checksum).
 BOOST_AUTO_TEST_CASE(damaged_cell_offset) {
-  const std::string raw = readBytes(rewritten("raw.vtp", [](vtkPolyData*) {}, uncompressed));
-  // sph writes the vertex offsets as Int32 (VTK's 64-bit vtkIdType, Int64,
-  // in files of other programs and of sph before 2026-12-07).
-  const std::size_t width = raw.find("type=\"Int32\" Name=\"offsets\"") != std::string::npos ? 4 : 8;
-  std::string s = raw;
-  const std::size_t last = dataOf("offsets", raw) + 4 + 3 * width;  // UInt32 size, then 4 offsets
-  BOOST_TEST_REQUIRE(raw.compare(last, width, std::string("\x04\0\0\0\0\0\0\0", width)) == 0);
-  s[last + width - 1] = 0x7f;
-  expectRefused(writeBytes("huge_offset.vtp", s), "cell offsets of <Verts>");
+  // sph writes the vertex offsets as Int32; VTK's 64-bit vtkIdType (Int64)
+  // is in files of other programs and of sph before 2026-12-07.
+  for (const std::size_t width : {4u, 8u}) {
+    const auto storage = [width](vtkPolyData* poly) {
+      if (width == 8) poly->GetVerts()->ConvertTo64BitStorage();
+      else poly->GetVerts()->ConvertTo32BitStorage();
+    };
+    const std::string raw = readBytes(rewritten("raw.vtp", storage, uncompressed));
+    BOOST_TEST_REQUIRE(raw.find(std::string("type=\"Int") + (width == 4 ? "32" : "64") + "\" Name=\"offsets\"") !=
+                       std::string::npos);
+    std::string s = raw;
+    const std::size_t last = dataOf("offsets", raw) + 4 + 3 * width;  // UInt32 size, then 4 offsets
+    BOOST_TEST_REQUIRE(raw.compare(last, width, std::string("\x04\0\0\0\0\0\0\0", width)) == 0);
+    s[last + width - 1] = 0x7f;
+    expectRefused(writeBytes("huge_offset.vtp", s), "cell offsets of <Verts>");
+  }
 }
 
 BOOST_AUTO_TEST_CASE(header_values_out_of_range) {

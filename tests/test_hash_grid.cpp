@@ -299,7 +299,7 @@ BOOST_AUTO_TEST_CASE(bucket_numbers_in_lent_bytes) {
   const std::vector<Vec<2>> x0 = P.x;
   HashGrid<2> own(0.03), lent(0.03);
   own.build(P.x);
-  lent.build(P.x, SIZE_MAX, SIZE_MAX, SIZE_MAX, reinterpret_cast<unsigned char*>(P.lendScratch((P.size() + 1) / 2)));
+  lent.build(P.x, SIZE_MAX, SIZE_MAX, SIZE_MAX, P.lendScratchBytes(4 * P.size()));
   BOOST_TEST(lent.order() == own.order());
   BOOST_TEST(own.bytesAllocated() - lent.bytesAllocated() == 4 * P.size());
   P.permute(lent.order());

@@ -402,6 +402,11 @@ struct Particles : FieldArrays<D> {
     if (scratch_.vector.size() < entries) growTo(scratch_.vector, entries);
     return scratch_.vector.empty() ? nullptr : scratch_.vector.data()->data();
   }
+  // The same, as `bytes` raw bytes (for values of another type, written and
+  // read through memcpy).
+  unsigned char* lendScratchBytes(std::size_t bytes) {
+    return reinterpret_cast<unsigned char*>(lendScratch((bytes + sizeof(Real) - 1) / sizeof(Real)));
+  }
 
   // The fields' arrays alone [bytes].
   std::size_t fieldBytes() const { return FieldArrays<D>::bytesAllocated(); }

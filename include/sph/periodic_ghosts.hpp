@@ -160,7 +160,7 @@ void sortByCell(Particles<D>& P, HashGrid<D>& grid, NeighbourList<D>& neighbours
   if constexpr (!std::is_void_v<Halos>)
     if (halos) halos->makeHalos(P, radius);
   grid.build(P.x, P.fluidCount(), P.size(), P.ghostFluidEnd(),
-             reinterpret_cast<unsigned char*>(P.lendScratch((P.totalSize() + 1) / 2)));
+             P.lendScratchBytes(sizeof(std::uint32_t) * P.totalSize()));
   P.permute(grid.order(), carryAll);
   if constexpr (!std::is_void_v<Halos>)
     if (halos) halos->followPermutation(grid.order(), P.size());
