@@ -254,6 +254,8 @@ BOOST_AUTO_TEST_CASE(neighbour_list_survives_changing_thread_counts) {
   omp_set_num_threads(before);
 }
 
+namespace {
+
 // n random particles in the unit square, each with its index as id, v (i, -i)
 // and m 1 + i, so that a permutation's result can be checked.
 Particles<2> numberedParticles(std::size_t n, unsigned seed) {
@@ -278,6 +280,8 @@ bool keptTheirData(const Particles<2>& P, const std::vector<Vec<2>>& x0, const s
   }
   return true;
 }
+
+}  // namespace
 
 // The sort is a permutation: every particle keeps its data.
 BOOST_AUTO_TEST_CASE(resort_keeps_particle_data) {
