@@ -68,7 +68,7 @@ BOOST_AUTO_TEST_CASE(memory_is_told_by_part) {
   const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
   BOOST_TEST_MESSAGE(line);
   std::istringstream in(line);
-  std::string word, parts;
+  std::string word;
   double mib = 0, total = 0;
   in >> word >> mib >> word >> total >> word >> word >> word;  // memory X MiB, Y B per particle:
   BOOST_TEST_REQUIRE(word == "particle:");

@@ -393,12 +393,15 @@ struct Particles : FieldArrays<D> {
   // (p/rho^2, m/rho; pairArrays in pair_scratch.hpp), formed and read
   // inside one pass, and the grid's bucket numbers, written and read by the
   // grid's build before the permute() that applies its order
-  // (sortByCell). Grown when it holds fewer (the step loop does not
-  // allocate once the particle count settles); call it outside a parallel
-  // region. The numbers do not survive the next permute() or lendScratch().
+  // (sortByCell). Grown when it holds fewer, to at least the vectors the
+  // next permute() needs (one per particle, ghosts included), so that a
+  // lend and the permute after it do not grow it twice (the step loop does
+  // not allocate once the particle count settles); call it outside a
+  // parallel region. The numbers do not survive the next permute() or
+  // lendScratch().
   Real* lendScratch(std::size_t reals) {
     static_assert(sizeof(Vec<D>) == D * sizeof(Real), "the scratch's vectors must be unpadded to lend their numbers");
-    const std::size_t entries = (reals + D - 1) / D;
+    const std::size_t entries = std::max((reals + D - 1) / D, totalSize());
     if (scratch_.vector.size() < entries) growTo(scratch_.vector, entries);
     return scratch_.vector.empty() ? nullptr : scratch_.vector.data()->data();
   }
