@@ -76,8 +76,8 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
   for (std::size_t i = 0; i < nFluid; ++i) {
     rhoMin = std::min(rhoMin, P.rho[i]);
     rhoMax = std::max(rhoMax, P.rho[i]);
-    pMin = std::min(pMin, P.p[i]);
-    pMax = std::max(pMax, P.p[i]);
+    pMin = std::min<Real>(pMin, P.p[i]);
+    pMax = std::max<Real>(pMax, P.p[i]);
     v2 = std::max(v2, P.v[i].squaredNorm());
     yMin = std::min(yMin, P.x[i][D - 1]);
     yMax = std::max(yMax, P.x[i][D - 1]);

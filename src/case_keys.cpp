@@ -24,6 +24,7 @@ std::vector<std::string> boundaryNames() { return methodNames(boundaryMethods())
 std::vector<std::string> densityNames() { return methodNames(densityMethods()); }
 std::vector<std::string> negativePressureNames() { return methodNames(negativePressureMethods()); }
 std::vector<std::string> neighbourWalkNames() { return methodNames(neighbourWalkMethods()); }
+std::vector<std::string> precisionNames() { return methodNames(precisionMethods()); }
 std::vector<std::string> densityReinitNames() { return methodNames(densityReinitMethods()); }
 std::vector<std::string> gradientCorrectionNames() { return methodNames(gradientCorrectionMethods()); }
 std::vector<std::string> surfaceTensionNames() { return methodNames(surfaceTensionMethods()); }
@@ -221,6 +222,11 @@ const std::vector<KeySpec>& caseKeys() {
        "of its bytes) or cells (no stored list: the grid's cells scanned again at every visit, slower); the same "
        "pairs in the same order, so the same results",
        {}, nullptr, neighbourWalkNames},
+      {"precision", G::kNumerics, &C::precision, "",
+       "How the density rate, pressure, sound speed and mass are stored: double, or mixed (single precision, 16 "
+       "bytes per particle fewer; positions, velocities, accelerations, density and every sum stay in double). "
+       "Fixed when sph is built (cmake -DSPH_PRECISION=double | mixed); a build refuses the other",
+       {}, "the build's (sph --version)", precisionNames},
       {"rebalance_tolerance", G::kNumerics, &C::rebalanceTolerance, "",
        "On several MPI ranks: the particles are shared out again (along the Morton curve, weighted by each "
        "particle's work: 1 + its neighbours) at the next list build when the busiest rank's work exceeds the "

@@ -379,7 +379,7 @@ int main(int argc, char** argv) {
   }
   if (argc >= 2 && argv[1][0] != '-') return missingSubcommand(argc, argv);
   CLI::App app(kTopHelp, "sph");
-  app.set_version_flag("--version", std::string("sph ") + SPH_VERSION);
+  app.set_version_flag("--version", std::string("sph ") + SPH_VERSION + " (precision " + sph::kBuildPrecision + ")");
   app.set_help_flag();
   bool help = false;
   app.add_flag("-h,--help", help, "Print this help, with every case key, and exit");

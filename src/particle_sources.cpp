@@ -315,7 +315,7 @@ InitialState<D> buildInitialState(const ResolvedCase& c) {
   // wcsph: masses from the lattice, m = rho0 dx^D (the seed scales them to
   // a mean density of rho0, as the seed says).
   if (wcsph && c.spacing > 0 && !s.massesGiven) {
-    for (Real& m : P.m) m = c.rho0 * std::pow(c.spacing, D);
+    for (auto& m : P.m) m = static_cast<Narrow>(c.rho0 * std::pow(c.spacing, D));
     s.massesGiven = true;
   }
   // Wall particles, after the fluid: a particle file's own (a snapshot's
@@ -439,7 +439,7 @@ InitialState<D> resumeState(const std::string& snapshot) {
     P.rho[k] = f.rho[order[k]];
   }
   // The rates the integrator carries into its next step.
-  auto scalars = [&](const std::vector<Real>& from, std::vector<Real>& to) {
+  auto scalars = [&](const std::vector<Real>& from, auto& to) {
     if (from.empty()) return;
     to.clear();
     for (std::size_t k = 0; k < from.size(); ++k) to.push_back(from[order[k]]);

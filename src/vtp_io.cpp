@@ -7,6 +7,7 @@
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -73,10 +74,15 @@ vtkSmartPointer<vtkDataArray> vectorArray(const char* name, const std::vector<Ve
   return arr;
 }
 
-vtkSmartPointer<vtkDoubleArray> scalarArray(const char* name, const std::vector<Real>& s, std::size_t n,
-                                            bool borrow = false) {
-  if (borrow) return borrowed<vtkDoubleArray>(name, s.data(), n, 1);
-  auto arr = vtkSmartPointer<vtkDoubleArray>::New();
+// Scalars in the type they are stored in: Float64, or Float32 for a
+// mixed-precision build's narrow fields (sph::Narrow, types.hpp).
+template <class T>
+vtkSmartPointer<vtkDataArray> scalarArray(const char* name, const std::vector<T>& s, std::size_t n,
+                                          bool borrow = false) {
+  static_assert(std::is_same_v<T, double> || std::is_same_v<T, float>);
+  using Array = std::conditional_t<std::is_same_v<T, double>, vtkDoubleArray, vtkFloatArray>;
+  if (borrow) return borrowed<Array>(name, s.data(), n, 1);
+  auto arr = vtkSmartPointer<Array>::New();
   arr->SetName(name);
   arr->SetNumberOfValues(static_cast<vtkIdType>(n));
   for (std::size_t i = 0; i < n; ++i) arr->SetValue(static_cast<vtkIdType>(i), s[i]);
@@ -180,8 +186,9 @@ vtkSmartPointer<vtkPolyData> snapshotPolyData(const Particles<D>& P, const Snaps
     vtkSmartPointer<vtkDataArray> arr;
     const std::size_t owned = P.size();
     if constexpr (std::is_same_v<T, Vec<D>>) arr = vectorArray<D>(f.vtkName, field, owned, borrow);
-    else if constexpr (std::is_same_v<T, Real>) arr = scalarArray(f.vtkName, field, owned, borrow);
+    else if constexpr (std::is_floating_point_v<T>) arr = scalarArray(f.vtkName, field, owned, borrow);
     else if constexpr (std::is_integral_v<T>) arr = integerArray(f.vtkName, field, owned, borrow);
+    else static_assert(std::is_same_v<T, Mat<D>>, "a field type the writer does not know");
     if (!arr) return;
     arr->GetInformation()->Set(vtkDataArray::UNITS_LABEL(), f.unit(D));
     pd->AddArray(arr);

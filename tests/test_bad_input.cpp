@@ -1,5 +1,6 @@
 // Bad input never runs and never writes: each case of the catalogue gives one
 // line naming the key or file, a non-zero exit status, and no output folder.
+#include "sph/types.hpp"
 #include "cli_support.hpp"
 
 #include <fstream>
@@ -54,6 +55,18 @@ BOOST_AUTO_TEST_CASE(wrong_type) { expectRejected({"--h", "abc"}, "--h = abc"); 
 BOOST_AUTO_TEST_CASE(h_not_positive) { expectRejected({"--h", "0"}, "h = 0 is out of range: it must be 1e-09 to 1e+09"); }
 BOOST_AUTO_TEST_CASE(dt_not_positive) { expectRejected({"--dt", "-1e-4"}, "dt = -0.0001 is out of range: it must be > 0"); }
 BOOST_AUTO_TEST_CASE(rho0_not_positive) { expectRejected({"--rho0", "0"}, "rho0 = 0 is out of range"); }
+// The precision is the build's (cmake -DSPH_PRECISION): a case asking for
+// the other is refused with the option that builds it, on a model with
+// walls (dam_break) as on the seed's.
+BOOST_AUTO_TEST_CASE(precision_of_another_build) {
+  const std::string other = std::string(kBuildPrecision) == "double" ? "mixed" : "double";
+  for (const char* caseName : {"dam_break_seed", "dam_break"})
+    expectRejected({"--precision", other},
+                   "precision = " + other + " needs sph built with cmake -DSPH_PRECISION=" + other +
+                       " (this build stores " + kBuildPrecision + ")",
+                   caseName);
+  expectRejected({"--precision", "single"}, "precision");
+}
 BOOST_AUTO_TEST_CASE(restitution_outside_unit_interval) {
   expectRejected({"--restitution", "1.5"}, "restitution = 1.5 is out of range: it must be 0 to 1");
   expectRejected({"--restitution", "-0.1"}, "restitution = -0.1 is out of range");
@@ -153,7 +166,7 @@ BOOST_AUTO_TEST_CASE(help_and_version_succeed) {
     BOOST_TEST(help.output.find(key) != std::string::npos, "help lacks " << key);
   const auto version = test::runSph({"--version"});
   BOOST_TEST(version.exitCode == 0);
-  BOOST_TEST(version.output == std::string("sph ") + SPH_VERSION + "\n");
+  BOOST_TEST(version.output == std::string("sph ") + SPH_VERSION + " (precision " + sph::kBuildPrecision + ")\n");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -145,7 +145,7 @@ BOOST_AUTO_TEST_CASE(diffusion_keeps_uniform_and_hydrostatic_states) {
     Scene<2> t = makeScene<2>(withDefaults(again), std::move(init));
     BOOST_REQUIRE(!t.initialise(false));
     Real worst = 0;
-    for (std::size_t i = 0; i < t.particles().size(); ++i) worst = std::max(worst, std::abs(t.particles().drho[i]));
+    for (std::size_t i = 0; i < t.particles().size(); ++i) worst = std::max<Real>(worst, std::abs(t.particles().drho[i]));
     return worst;
   };
   BOOST_TEST(rates("molteni", false) < 1e-9);

@@ -1,6 +1,7 @@
 // Mass scaling: after m = N rho0 / sum rho_i(m = 1), the mean summation
 // density equals rho0 (to round-off: it is an identity of the summation).
 #include "test_support.hpp"
+#include "stored_precision.hpp"
 
 #include "sph/particle_sources.hpp"
 
@@ -21,7 +22,7 @@ BOOST_AUTO_TEST_CASE(mean_density_equals_rho0_for_a_block) {
   auto scene = test::makeScene<2>(init.particles.x, {}, prm, true, 1e-4);
   Real sum = 0;
   for (Real rho : scene.particles().rho) sum += rho;
-  BOOST_TEST(sum / static_cast<Real>(n) == 1000.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(sum / static_cast<Real>(n) == 1000.0, boost::test_tools::tolerance(test::storedTolerance(1e-12)));
   // Interior particles of a block at h/dx = 1.33 sit near rho0, edges below.
   const auto [lo, hi] = std::minmax_element(scene.particles().rho.begin(), scene.particles().rho.end());
   BOOST_TEST(*hi > 1000.0);
@@ -41,7 +42,7 @@ BOOST_AUTO_TEST_CASE(mean_density_equals_rho0_for_a_disc_and_in_3d) {
   auto s2 = test::makeScene<2>(disc.particles.x, {}, prm, true, 1e-4);
   Real sum = 0;
   for (Real rho : s2.particles().rho) sum += rho;
-  BOOST_TEST(sum / static_cast<Real>(s2.particles().size()) == 998.2, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(sum / static_cast<Real>(s2.particles().size()) == 998.2, boost::test_tools::tolerance(test::storedTolerance(1e-12)));
 
   c.dimension = 3;
   c.domainMin = {0, 0, 0};
@@ -52,7 +53,7 @@ BOOST_AUTO_TEST_CASE(mean_density_equals_rho0_for_a_disc_and_in_3d) {
   auto s3 = test::makeScene<3>(ball.particles.x, {}, prm, true, 1e-4);
   sum = 0;
   for (Real rho : s3.particles().rho) sum += rho;
-  BOOST_TEST(sum / static_cast<Real>(s3.particles().size()) == 998.2, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(sum / static_cast<Real>(s3.particles().size()) == 998.2, boost::test_tools::tolerance(test::storedTolerance(1e-12)));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

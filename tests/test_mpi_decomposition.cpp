@@ -32,6 +32,7 @@ namespace {
 
 using sph::FieldSet;
 using sph::Particles;
+using sph::Narrow;
 using sph::Real;
 using sph::Vec;
 using sph::fieldBit;
@@ -57,7 +58,8 @@ struct Global {
 // Every field of particle id as a function of the id, so a check knows them.
 template <int D>
 Vec<D> velocityOf(std::int64_t id) { return Vec<D>::Constant(Real(0.25) * static_cast<Real>(id) - 3); }
-Real massOf(std::int64_t id) { return Real(1) + Real(1e-3) * static_cast<Real>(id); }
+// (As stored: a narrow field, float in a mixed-precision build.)
+Narrow massOf(std::int64_t id) { return static_cast<Narrow>(Real(1) + Real(1e-3) * static_cast<Real>(id)); }
 Real densityOf(std::int64_t id) { return Real(1000) + Real(0.5) * static_cast<Real>(id); }
 
 // Random fluid in the unit box; points exactly on cell faces (one

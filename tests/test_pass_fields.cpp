@@ -88,7 +88,7 @@ bool sameBits(const T& a, const T& b) {
 
 template <class T>
 T poison() {
-  if constexpr (std::is_same_v<T, Real>) return std::numeric_limits<Real>::quiet_NaN();
+  if constexpr (std::is_floating_point_v<T>) return std::numeric_limits<T>::quiet_NaN();
   else if constexpr (std::is_integral_v<T>) return static_cast<T>(0x5A5A5A5A5A5A5A5Aull);
   else return T::Constant(std::numeric_limits<Real>::quiet_NaN());
 }
@@ -119,7 +119,7 @@ int checkPass(const std::string& what, const Particles<D>& state, const FieldAcc
   fill(input, access.writes & ~access.reads, [](auto x) {
     using T = decltype(x);
     if constexpr (std::is_integral_v<T>) return x;
-    else if constexpr (std::is_same_v<T, Real>) return Real(-1.2345e-7);
+    else if constexpr (std::is_floating_point_v<T>) return T(-1.2345e-7);
     else return T(T::Constant(Real(-1.2345e-7)));
   });
   Particles<D> reference = input;

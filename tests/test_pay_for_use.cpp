@@ -85,14 +85,14 @@ BOOST_AUTO_TEST_CASE(enabled_terms_allocate_exactly_their_fields) {
   BOOST_TEST(has(terms, "xsph"));
   BOOST_TEST(has(terms, "gravity"));
   // The memory difference is exactly those 5 vector fields and one scalar
-  // per particle: RK4's 4 stage fields are permuted when a stage re-sorts,
+  // (the sound speed, a narrow field: float in a mixed build) per particle: RK4's 4 stage fields are permuted when a stage re-sorts,
   // through the vector scratch that x's permutation has already (no shadow
   // buffer per field).
   CaseConfig bare = block(3);
   bare.integrator = "symplectic_euler";
   const Scene<3> b = test::sceneOf<3>(bare);
   BOOST_TEST(s.particles().bytesAllocated() - b.particles().bytesAllocated() ==
-             n * (5 * sizeof(Vec<3>) + sizeof(Real)));
+             n * (5 * sizeof(Vec<3>) + sizeof(Narrow)));
 }
 
 BOOST_AUTO_TEST_CASE(viscosity_with_zero_coefficient_is_not_constructed) {

@@ -157,7 +157,7 @@ void checkGhostsAgainstMinimumImage(const PeriodicBox<D>& box, Real support, std
   }
   P.resize(total, nFluid);
   const std::vector<Vec<D>> x0 = P.x;
-  const std::vector<Real> m0 = P.m;
+  const std::vector<Narrow> m0 = P.m;
   const SeedKernels W(support);
 
   // The reference, on the unsorted points.

@@ -4,6 +4,7 @@
 // speed. Reference: tests/reference/single_particle_bounce.csv (impact
 // times and speeds of the continuous problem).
 #include "test_support.hpp"
+#include "stored_precision.hpp"
 
 #include <fstream>
 
@@ -43,8 +44,10 @@ BOOST_AUTO_TEST_CASE(free_fall_is_exact_and_rebound_is_e_times_impact) {
   SeedWcsphParameters prm;  // defaults: h = 0.01, k = 2000, rho0 = 1000, mu = 1, g = 9.81
   auto scene = test::makeScene<2>({Vec<2>(0.5, y0)}, {}, prm, true, dt, 0, e);
   const auto& P = scene.particles();
-  BOOST_TEST(P.rho[0] == 1000.0, boost::test_tools::tolerance(1e-14));  // mass scaled: rho = rho0
-  BOOST_TEST(P.p[0] == 0.0, boost::test_tools::tolerance(1e-9));
+  // Mass scaled: rho = rho0, so p = k (rho - rho0) = 0, to the round-off of
+  // the stored mass (narrow: float in a mixed build, test::storedTolerance).
+  BOOST_TEST(P.rho[0] == 1000.0, boost::test_tools::tolerance(test::storedTolerance(1e-14)));
+  BOOST_TEST(std::abs(P.p[0]) <= std::max(1e-9, prm.k * 1000.0 * test::storedTolerance(0)));
 
   // Free flight: leap-frog integrates a constant acceleration exactly.
   long contactStep = -1;

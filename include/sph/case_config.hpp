@@ -128,6 +128,11 @@ struct CaseConfig {
   Real neighbourSkin = 0;
   std::string neighbourWalk = "list";  // list | packed | cells
 
+  // the storage of the narrow fields (sph::Narrow, types.hpp): double |
+  // mixed, fixed when sph is built (SPH_PRECISION); a case may name the
+  // one it needs, and a build of the other refuses it
+  std::string precision = kBuildPrecision;
+
   // several MPI ranks (sph/scene.hpp): share the particles out again when the
   // busiest rank's work exceeds the mean by more than this fraction
   Real rebalanceTolerance = 0.1;

@@ -355,6 +355,25 @@ inline const std::vector<Method<NeighbourStorage>>& neighbourWalkMethods() {
   return m;
 }
 
+// How the narrow fields are stored (precision key; sph::Narrow, types.hpp):
+// a property of the build (cmake -DSPH_PRECISION), so the other row is
+// refused with how to get it.
+inline void requireBuildPrecision(const CaseConfig& c) {
+  if (c.precision != kBuildPrecision)
+    throw CaseError("precision = " + c.precision + " needs sph built with cmake -DSPH_PRECISION=" + c.precision +
+                    " (this build stores " + kBuildPrecision + ")");
+}
+inline const std::vector<Method<bool>>& precisionMethods() {
+  static const std::vector<Method<bool>> m = {
+      {"double", "every particle field in double precision", {}, [](const CaseConfig&) { return false; },
+       {}, requireBuildPrecision},
+      {"mixed", "the density rate, pressure, sound speed and mass stored in single precision (16 bytes per "
+                "particle fewer); positions, velocities, accelerations, density and every sum in double",
+       {}, [](const CaseConfig&) { return true; }, {}, requireBuildPrecision},
+  };
+  return m;
+}
+
 // Colour-field surface tension (terms/colour_surface_tension.hpp): the
 // curvature method, none for no surface tension.
 inline void requireComposedForTension(const CaseConfig& c) {
@@ -507,6 +526,7 @@ void forEachSharedFamily(const CaseConfig& c, F&& f) {
   f(initialFlowMethods(), "initial_flow", c.initialFlow);
   f(negativePressureMethods(), "negative_pressure", c.negativePressure);
   f(neighbourWalkMethods(), "neighbour_walk", c.neighbourWalk);
+  f(precisionMethods(), "precision", c.precision);
 }
 
 // The combination rules of the methods a case chooses.

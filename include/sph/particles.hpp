@@ -68,11 +68,12 @@ struct IndexRange {
 template <int D>
 struct FieldArrays {
   std::vector<Vec<D>> x, v, a;
-  std::vector<Real> rho, drho, p, m;
+  std::vector<Real> rho;
+  std::vector<Narrow> drho, p, m;
   std::vector<std::int64_t> id;
   std::vector<std::uint8_t> kind;
   std::vector<Vec<D>> vHalf;
-  std::vector<Real> c;
+  std::vector<Narrow> c;
   std::vector<Vec<D>> vXsph, vWall;
   std::vector<Vec<D>> x0, v0;
   std::vector<Real> rho0;

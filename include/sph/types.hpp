@@ -12,6 +12,20 @@ namespace sph {
 
 using Real = double;
 
+// The type of the particle fields that tolerate single precision: the
+// density rate, pressure, sound speed and mass (fields.hpp). float in a
+// mixed-precision build (cmake -DSPH_PRECISION=mixed, which defines
+// SPH_MIXED_PRECISION), else Real. Positions, velocities, accelerations and
+// density stay in Real, and every pass sums in Real and rounds once, when
+// it stores (docs/performance.md, "Mixed precision").
+#ifdef SPH_MIXED_PRECISION
+using Narrow = float;
+inline constexpr const char* kBuildPrecision = "mixed";
+#else
+using Narrow = Real;
+inline constexpr const char* kBuildPrecision = "double";
+#endif
+
 template <int D>
 using Vec = Eigen::Matrix<Real, D, 1>;
 

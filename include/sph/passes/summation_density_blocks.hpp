@@ -30,7 +30,7 @@ struct SummationDensityRow {
   // (Its own function, called once per particle: as runFluidRow.)
   [[gnu::noinline]] Real operator()(std::uint32_t i, const std::uint32_t* begin, const std::uint32_t* end) const {
     const Real* x = P.x.front().data();  // x_0, y_0, (z_0,) x_1, ...
-    const Real* m = P.m.data();
+    const Narrow* m = P.m.data();
     Real xi[D];
     for (int d = 0; d < D; ++d) xi[d] = x[D * i + d];
     const WendlandC2<D> k = kernel;
@@ -39,6 +39,7 @@ struct SummationDensityRow {
       std::int64_t index[kPairBlock];
       const std::uint32_t filled = blockIndices(block, static_cast<std::uint32_t>(end - block), index);
       const BlockVectors<D> xj(x, index);
+      const NarrowBlock mj(m, index);
 #pragma omp simd
       for (int l = 0; l < kPairBlock; ++l) {
         Real r2 = 0;
@@ -46,11 +47,11 @@ struct SummationDensityRow {
           const Real rij = xi[d] - xj(d, l);
           r2 += rij * rij;
         }
-        const Real term = m[index[l]] * k.W(std::sqrt(r2));
+        const Real term = mj(l, index[l]) * k.W(std::sqrt(r2));
         sum[l] += l < static_cast<int>(filled) ? term : 0.0;
       }
     }
-    return m[i] * k.W(0) + laneTotal(sum);
+    return Real(m[i]) * k.W(0) + laneTotal(sum);
   }
 };
 

@@ -35,7 +35,7 @@ struct MonaghanViscosity {
     if (vr >= 0) return;
     const Real h = kernel.h();
     const Real mu = h * vr / (c.r * c.r + eps * h * h);
-    const Real cBar = (P.c[c.i] + P.c[c.j]) / 2, rhoBar = (P.rho[c.i] + P.rho[c.j]) / 2;
+    const Real cBar = (Real(P.c[c.i]) + P.c[c.j]) / 2, rhoBar = (P.rho[c.i] + P.rho[c.j]) / 2;
     const Real Pi = (-alpha * cBar * mu + beta * mu * mu) / rhoBar;
     r.a += (-P.m[c.j] * Pi) * c.gradW;
   }

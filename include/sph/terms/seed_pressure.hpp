@@ -23,7 +23,7 @@ struct SeedPressure {
 
   template <int D>
   void add(const Pair<D>& c, const Particles<D>& P, PairRates<D>& r) const {
-    const Real pBar = (P.p[c.i] + P.p[c.j]) / 2;
+    const Real pBar = (Real(P.p[c.i]) + P.p[c.j]) / 2;
     r.F += (-P.m[c.j] / P.rho[c.j] * pBar * kernels.pressureFactor(c.q)) * c.rij;
   }
 };
