@@ -224,7 +224,8 @@ const std::vector<KeySpec>& caseKeys() {
        {}, nullptr, neighbourWalkNames},
       {"precision", G::kNumerics, &C::precision, "",
        "How the density rate, pressure, sound speed and mass are stored: double, or mixed (single precision, 16 "
-       "bytes per particle fewer; positions, velocities, accelerations, density and every sum stay in double). "
+       "bytes per particle fewer, 12 without a sound speed field; positions, velocities, accelerations, density "
+       "and every sum stay in double). "
        "Fixed when sph is built (cmake -DSPH_PRECISION=double | mixed); a build refuses the other",
        {}, "the build's (sph --version)", precisionNames},
       {"rebalance_tolerance", G::kNumerics, &C::rebalanceTolerance, "",

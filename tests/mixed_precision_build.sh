@@ -5,12 +5,17 @@
 # validation figures the double build meets, with validate.py's own
 # tolerances (its header says why): the hydrostatic tank's pressure against
 # rho0 g (H - y), and the dam break's front against Martin & Moyce.
-#   mixed_precision_build.sh SOURCE_DIR WORK_DIR PYTHON
-# About 5 minutes on 2 cores (most of it the build).
+#   mixed_precision_build.sh SOURCE_DIR WORK_DIR PYTHON [SPH_NATIVE]
+# PYTHON: one with numpy and VTK (Debian's /usr/bin/python3); SPH_NATIVE:
+# the outer build's (ON by default). About 4 minutes on 2 cores, most of it
+# the build.
 set -euo pipefail
-src=$1 work=$2 py=$3
+src=$1 work=$2 py=$3 native=${4:-ON}
+"$py" -c "import numpy, vtkmodules" 2> /dev/null ||
+  { echo "FAILED: $py lacks numpy or VTK (Debian's python3: scripts/setup.sh)"; exit 1; }
 mkdir -p "$work"
-cmake -S "$src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DSPH_PRECISION=mixed > "$work/configure.log"
+cmake -S "$src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DSPH_PRECISION=mixed -DSPH_NATIVE="$native" \
+  > "$work/configure.log"
 cmake --build "$work/build" -j2 --target sph > "$work/build.log"
 version=$("$work/build/sph" --version)
 echo "$version"

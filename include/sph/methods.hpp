@@ -368,7 +368,8 @@ inline const std::vector<Method<bool>>& precisionMethods() {
       {"double", "every particle field in double precision", {}, [](const CaseConfig&) { return false; },
        {}, requireBuildPrecision},
       {"mixed", "the density rate, pressure, sound speed and mass stored in single precision (16 bytes per "
-                "particle fewer); positions, velocities, accelerations, density and every sum in double",
+                "particle fewer, 12 without a sound speed field); positions, velocities, accelerations, density "
+                "and every sum in double",
        {}, [](const CaseConfig&) { return true; }, {}, requireBuildPrecision},
   };
   return m;

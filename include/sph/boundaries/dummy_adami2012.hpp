@@ -60,9 +60,12 @@ void extrapolateToWalls(Particles<D>& P, const NeighbourList<D>& neighbours, con
                    const Vec<D> uw = P.v[w];
                    if (sumW > 0) {
                      const bool accelerated = P.id[w] >= moving.firstId && P.id[w] < moving.endId;
-                     P.p[w] = std::max(Real(0),
-                                       (sumPW + (accelerated ? movingBody : bodyAcceleration).dot(sumRhoRW)) / sumW);
-                     P.rho[w] = e.density(P.p[w]);
+                     // (The density from the pressure as computed, not as
+                     // stored: a mixed-precision build stores p in float.)
+                     const Real pw = std::max(
+                         Real(0), (sumPW + (accelerated ? movingBody : bodyAcceleration).dot(sumRhoRW)) / sumW);
+                     P.p[w] = pw;
+                     P.rho[w] = e.density(pw);
                      if (withWallVelocity) {
                        const Vec<D> vFluid = sumVW / sumW;
                        P.vWall[w] = noSlip ? Vec<D>(2 * uw - vFluid) : vFluid;
