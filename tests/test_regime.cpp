@@ -133,7 +133,7 @@ BOOST_AUTO_TEST_CASE(a_block_scattered_into_spray_is_stopped_and_warn_lets_it_go
   const long stopStep = j["summary"]["steps"].get<long>();
   BOOST_TEST(stopStep > (std::string(kBuildPrecision) == "double" ? 200 : 150));
   const long lastSnapshot = (stopStep - 1) / 50;
-  char name[32], next[32];
+  char name[48], next[48];
   std::snprintf(name, sizeof name, "block_drop_%05ld.vtp", lastSnapshot);
   std::snprintf(next, sizeof next, "block_drop_%05ld.vtp", lastSnapshot + 1);
   BOOST_TEST(std::filesystem::exists(dir / "stop" / name), name);
