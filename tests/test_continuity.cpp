@@ -217,7 +217,7 @@ void checkDensityRateBlocks() {
       choice.hydrostatic = form == 2;
       const DensityDiffusion<D> diffusion = DensityDiffusion<D>::build(choice, c.h, c.c0, c.rho0, gravityVector<D>(c));
       Particles<D> lender = P;  // lends the arrays the loops' prologue fills
-      const ParticlePrologue<D> prologue = pairArrays(lender, false, diffusion.active());
+      const ParticlePrologue<D> prologue = pairArrays(lender, false, diffusion.active(), true);
       DensityDiffusion<D> here = diffusion;
       here.volume = prologue.volume;
       Particles<D> blocks = P, scalar = P;
@@ -235,8 +235,9 @@ void checkDensityRateBlocks() {
                     NoGradientCorrection{}, prologue, fluidRow, wallRow);
       };
       // The wall neighbours in blocks too: continuity alone, as the pass.
-      loop(blocks, fluidPairs, wallPairs, wallOwn, DensityRateRow<D, WendlandC2<D>>{blocks, kernel, here},
-           DensityRateRow<D, WendlandC2<D>, false>{blocks, kernel, here});
+      const Real* m = realMasses(blocks, prologue);
+      loop(blocks, fluidPairs, wallPairs, wallOwn, DensityRateRow<D, WendlandC2<D>>{blocks, kernel, here, m},
+           DensityRateRow<D, WendlandC2<D>, false>{blocks, kernel, here, m});
       loop(scalar, fluidPairs, wallPairs, wallOwn, PairByPair{}, PairByPair{});
       loop(magnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), test::magnitudesOf(wallOwn),
            PairByPair{}, PairByPair{});

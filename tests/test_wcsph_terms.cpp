@@ -223,7 +223,7 @@ void checkForceBlocks() {
     for (const Real beta : {0.0, 1.0})
       for (const bool xsph : {false, true}) {
         Particles<D> lender = P;  // lends the arrays the loops' prologue fills
-        const ParticlePrologue<D> prologue = pairArrays(lender, true, false);
+        const ParticlePrologue<D> prologue = pairArrays(lender, true, false, true);
         const SymmetricPressure pressure{false, prologue.pOverRho2};
         const MonaghanViscosity<WendlandC2<D>> viscosity{kernel, 0.02, beta};
         const auto wallPairs =
@@ -245,13 +245,15 @@ void checkForceBlocks() {
         };
         // The wall neighbours in blocks too: the row without XSPH (the
         // walls' pack has none).
-        const PressureViscosityRow<D, WendlandC2<D>> wallRow{blocks, kernel, prologue.pOverRho2, 0.02, beta};
+        const Real* m = realMasses(blocks, prologue);
+        const PressureViscosityRow<D, WendlandC2<D>> wallRow{blocks, kernel, prologue.pOverRho2, 0.02, beta, m};
         if (xsph)
           loop(blocks, xsphBlocks, fluidPairs, wallPairs,
-               PressureViscosityRow<D, WendlandC2<D>, true>{blocks, kernel, prologue.pOverRho2, 0.02, beta}, wallRow);
+               PressureViscosityRow<D, WendlandC2<D>, true>{blocks, kernel, prologue.pOverRho2, 0.02, beta, m},
+               wallRow);
         else
           loop(blocks, xsphBlocks, fluidPairs, wallPairs,
-               PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta}, wallRow);
+               PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta, m}, wallRow);
         loop(scalar, xsphScalar, fluidPairs, wallPairs, PairByPair{}, PairByPair{});
         loop(magnitude, xsphMagnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{},
              PairByPair{});

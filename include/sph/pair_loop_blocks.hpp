@@ -147,8 +147,10 @@ struct BlockVectors {
   [[gnu::always_inline]] Real operator()(int d, int l) const { return c[d][l]; }
 };
 
-// A narrow field (sph::Narrow, types.hpp: the mass, the sound speed) of a
-// block's neighbours, read as Real by lane: in a double build the field
+// A narrow field (sph::Narrow, types.hpp: the sound speed of the force
+// walk, the mass of the summation walk; the water walks read the masses
+// widened once per pass, realMasses in pair_scratch.hpp) of a block's
+// neighbours, read as Real by lane: in a double build the field
 // itself, read in the lanes' loop; in a mixed-precision build its floats
 // gathered and widened to doubles before the loop, since GCC 12 leaves a
 // lanes' loop that reads a float array through the lanes' indices scalar

@@ -53,7 +53,8 @@ struct DensityRatePass {
 // Defined here, instantiated once (src/instantiate_forces_*.cpp).
 template <int D>
 unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-  const ParticlePrologue<D> prologue = pairArrays(P, false, diffusion.active());
+  const bool blocks = pairBlocksAllowed() && !anyRateTermActive(terms);  // (and Wendland C2, below)
+  const ParticlePrologue<D> prologue = pairArrays(P, false, diffusion.active(), blocks);
   DensityDiffusion<D> diffusionHere = diffusion;
   diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(
@@ -69,11 +70,12 @@ unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighb
         };
         using K = std::decay_t<decltype(k)>;
         if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>>) {
-          if (pairBlocksAllowed() && !anyRateTermActive(terms) &&
-              (diffusionHere.coefficient == 0 || diffusionHere.volume)) {
+          const Real* m = realMasses(P, prologue);
+          if (blocks && m && (diffusionHere.coefficient == 0 || diffusionHere.volume)) {
             // The wall neighbours: continuity alone (the diffusion is
             // between fluid particles), the wall pack's one term.
-            return loop(DensityRateRow<D, K>{P, k, diffusionHere}, DensityRateRow<D, K, false>{P, k, diffusionHere});
+            return loop(DensityRateRow<D, K>{P, k, diffusionHere, m},
+                        DensityRateRow<D, K, false>{P, k, diffusionHere, m});
           }
         }
         return loop(PairByPair{}, PairByPair{});

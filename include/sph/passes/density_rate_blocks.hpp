@@ -31,12 +31,12 @@ struct DensityRateRow {
   const Particles<D>& P;
   Kernel kernel;
   DensityDiffusion<D> diffusion;
+  const Real* m;  // every particle's mass as Real (realMasses, pair_scratch.hpp), required
 
   [[gnu::always_inline]] void operator()(std::uint32_t i, const std::uint32_t* begin, const std::uint32_t* end,
                                          PairRates<D>& rates) const {
     const Real* x = P.x.front().data();  // x_0, y_0, (z_0,) x_1, ...
     const Real* v = P.v.front().data();
-    const Narrow* m = P.m.data();
     const Real* rho = P.rho.data();
     Real xi[D], vi[D], hydrostatic[D];
     for (int d = 0; d < D; ++d) xi[d] = x[D * i + d], vi[d] = v[D * i + d], hydrostatic[d] = diffusion.hydrostatic[d];
@@ -51,14 +51,13 @@ struct DensityRateRow {
       std::int64_t index[kPairBlock];
       const std::uint32_t filled = blockIndices(block, static_cast<std::uint32_t>(end - block), index);
       const BlockVectors<D> xj(x, index), vj(v, index);
-      const NarrowBlock mj(m, index);
 #pragma omp simd
       for (int l = 0; l < kPairBlock; ++l) {
         const LanePair<D> q = lanePair<D>(xi, xj, l, k);
         const std::int64_t j = index[l];
         Real vij[D];
         for (int d = 0; d < D; ++d) vij[d] = vi[d] - vj(d, l);
-        const Real continuity = mj(l, j) * laneDot<D>(vij, q.g);
+        const Real continuity = m[j] * laneDot<D>(vij, q.g);
         if constexpr (kDiffusion) {
           const Real psi = (rho[j] - rhoi) + laneDot<D>(hydrostatic, q.rij);
           const Real diffused = coefficient * V[j] * psi * (-laneDot<D>(q.rij, q.g)) / (q.r * q.r + eta2);

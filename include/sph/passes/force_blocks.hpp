@@ -32,12 +32,12 @@ struct PressureViscosityRow {
   Kernel kernel;
   const Real* pOverRho2;  // p/rho^2 of every particle (the pass's prologue), required
   Real alpha, beta;
+  const Real* m;  // every particle's mass as Real (realMasses, pair_scratch.hpp), required
 
   [[gnu::always_inline]] void operator()(std::uint32_t i, const std::uint32_t* begin, const std::uint32_t* end,
                                          PairRates<D>& rates) const {
     const Real* x = P.x.front().data();  // x_0, y_0, (z_0,) x_1, ...
     const Real* v = P.v.front().data();
-    const Narrow* m = P.m.data();
     const Real* rho = P.rho.data();
     const Narrow* c = P.c.data();
     const Real* pr = pOverRho2;
@@ -53,25 +53,25 @@ struct PressureViscosityRow {
       std::int64_t index[kPairBlock];
       const std::uint32_t filled = blockIndices(block, static_cast<std::uint32_t>(end - block), index);
       const BlockVectors<D> xj(x, index), vj(v, index);
-      const NarrowBlock mj(m, index), cj(c, index);
+      const NarrowBlock cj(c, index);
 #pragma omp simd
       for (int l = 0; l < kPairBlock; ++l) {
         const LanePair<D> q = lanePair<D>(xi, xj, l, k);
         const std::int64_t j = index[l];
-        const Real sp = -mj(l, j) * (pi + pr[j]);
+        const Real sp = -m[j] * (pi + pr[j]);
         Real vij[D];
         for (int d = 0; d < D; ++d) vij[d] = vi[d] - vj(d, l);
         const Real vr = laneDot<D>(vij, q.rij);
         const Real mu = h * vr / (q.r * q.r + eps * h * h);
         const Real cBar = (ci + cj(l, j)) / 2, rhoBar = (rhoi + rho[j]) / 2;
         const Real Pi = (-a * cBar * mu + b * mu * mu) / rhoBar;
-        const Real sv = -mj(l, j) * Pi;
+        const Real sv = -m[j] * Pi;
         const bool viscous = !(vr >= 0);  // (as MonaghanViscosity::add, which skips vr >= 0 only)
         const bool counts = laneCounts(l, filled, q.r2, support2);
         const Real s = sp + (viscous ? sv : 0.0);
         for (int d = 0; d < D; ++d) sa[d][l] += counts ? s * q.g[d] : 0.0;  // (not 0 x a NaN of a skipped pair)
         if constexpr (kXsph) {
-          const Real f = 2 * mj(l, j) / (rhoi + rho[j]) * k.W(q.r);  // (Xsph::add's factor, in its order)
+          const Real f = 2 * m[j] / (rhoi + rho[j]) * k.W(q.r);  // (Xsph::add's factor, in its order)
           for (int d = 0; d < D; ++d) sx[d][l] += counts ? f * (vj(d, l) - vi[d]) : 0.0;
         }
       }

@@ -159,7 +159,9 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   const bool wallRatesHere = walls.densityRates && rateHere;
   DensityDiffusion<D> diffusionHere = diffusion;
   if (!rateHere) diffusionHere.coefficient = 0;
-  const ParticlePrologue<D> prologue = pairArrays(P, true, diffusionHere.active());
+  const bool blocks = pairBlocksAllowed() && !rateHere && !cspm && !shifting.on &&
+                     !anyPairTermActive(terms);  // (and Wendland C2 with Monaghan's viscosity, below)
+  const ParticlePrologue<D> prologue = pairArrays(P, true, diffusionHere.active(), blocks);
   diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(
       [&](const auto& k, const auto& visc) {
@@ -191,14 +193,15 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         using V = std::decay_t<decltype(visc)>;
         if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>> &&
                       std::is_same_v<V, MonaghanViscosityChoice>) {
-          if (pairBlocksAllowed() && !rateHere && !cspm && !shifting.on && !anyPairTermActive(terms) &&
-              prologue.pOverRho2) {
+          const Real* m = realMasses(P, prologue);
+          if (blocks && prologue.pOverRho2 && m) {
             // (alpha, beta of the walls' own evaluator: 0 with free slip.)
             const auto wallVisc = std::get<0>(viscosityPack<K, true>(k, visc, wallViscosity));
-            const PressureViscosityRow<D, K> wallRow{P, k, prologue.pOverRho2, wallVisc.alpha, wallVisc.beta};
+            const PressureViscosityRow<D, K> wallRow{P, k, prologue.pOverRho2, wallVisc.alpha, wallVisc.beta, m};
             if (xsphEpsilon > 0)
-              return loop(PressureViscosityRow<D, K, true>{P, k, prologue.pOverRho2, visc.alpha, visc.beta}, wallRow);
-            return loop(PressureViscosityRow<D, K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta}, wallRow);
+              return loop(PressureViscosityRow<D, K, true>{P, k, prologue.pOverRho2, visc.alpha, visc.beta, m},
+                          wallRow);
+            return loop(PressureViscosityRow<D, K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta, m}, wallRow);
           }
         }
         return loop(PairByPair{}, PairByPair{});
