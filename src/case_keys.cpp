@@ -234,8 +234,8 @@ const std::vector<KeySpec>& caseKeys() {
        "mean by more than this fraction; no effect on the results, only on the speed",
        within(0.001, 100), "0.1", nullptr},
       {"regime_check", G::kNumerics, &C::regimeCheck, "",
-       "Every 10 steps and before every snapshot: Mach number above 1, a Tait fluid 10% above rho0, the fluid "
-       "breaking up (over half its particles alone), particles collapsing (4x the neighbours), pairing (a "
+       "Every 10 steps and before every snapshot: Mach number above 1, a Tait fluid 10% above rho0, a fluid "
+       "particle's density not positive, the fluid breaking up (over half its particles alone), particles collapsing (4x the neighbours), pairing (a "
        "warning): stop the run naming the cause (no snapshot of it written), only warn, or off",
        {}, nullptr, regimeCheckNames},
       {"threads", G::kNumerics, &C::threads, "",

@@ -91,6 +91,16 @@ BOOST_AUTO_TEST_CASE(measures_on_a_lattice) {
   BOOST_TEST(check.judge(s, 1e-3, 0.013).stop.find("compressed: a fluid particle's density is 1.2 rho0") == 0u);
   P.rho[2] = 1.09 * c.rho0;  // inside the window
   BOOST_TEST(check.judge(measureRegime(P, scene.neighbours(), 10.0, 0.01, c.rho0), 1e-3, 0.013).stop.empty());
+  // One particle's density not positive (a splash particle leaving a wall,
+  // docs/methods/boundaries.md): rarefied, at zero and below.
+  for (const Real rho : {0.0, -15.9}) {
+    P.rho[3] = rho;
+    s = measureRegime(P, scene.neighbours(), 10.0, 0.01, c.rho0);
+    BOOST_TEST(s.densityMin == rho);
+    BOOST_TEST(check.judge(s, 1e-3, 0.013).stop.find("rarefied: a fluid particle's density is") == 0u);
+  }
+  P.rho[3] = 1e-3;  // positive, however small: not this check's business
+  BOOST_TEST(check.judge(measureRegime(P, scene.neighbours(), 10.0, 0.01, c.rho0), 1e-3, 0.013).stop.empty());
 }
 
 // A sound speed far too low for the column (Tait, c0 = 5 m/s: B = rho0 c0^2

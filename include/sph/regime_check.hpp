@@ -20,6 +20,11 @@
 //                    the seed scheme set a stiffness k and are compressible
 //                    by design, the seed dam break reaching 1.2 rho0.)
 //                    Measured on the shipped water cases: at most 1.034.
+//   rarefied         a fluid particle's density not positive: its volume
+//                    m/rho is meaningless, whatever the model: stop. (With
+//                    continuity density and density diffusion a splash
+//                    particle that leaves a wall can get there at a small
+//                    time step: docs/methods/boundaries.md.)
 //   pairing          the fraction of fluid particles with a neighbour closer
 //                    than 0.2 dx: above 10% a warning, once (the pairing
 //                    instability; it need not end the run).
@@ -47,6 +52,7 @@ struct RegimeState {
   Real meanNeighbours = 0;     // per fluid particle
   Real pairedFraction = 0;     // fluid particles with a neighbour closer than 0.2 dx
   Real densityMax = 0;         // largest rho / rho0 of a fluid particle (0 without rho0)
+  Real densityMin = std::numeric_limits<Real>::infinity();  // smallest rho of a fluid particle [kg/m^3]
 };
 
 // A fluid particle more than this above rho0 is not weakly compressible.
@@ -62,11 +68,12 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
   const Real close2 = dx > 0 ? 0.04 * dx * dx : 0;
   // This thread's maxima and counts; merged: the largest, the sums.
   struct Tally {
-    Real v2 = 0, rhoMax = 0;
+    Real v2 = 0, rhoMax = 0, rhoMin = std::numeric_limits<Real>::infinity();
     std::size_t isolated = 0, paired = 0, pairs = 0;
     void operator+=(const Tally& o) {
       v2 = std::max(v2, o.v2);
       rhoMax = std::max(rhoMax, o.rhoMax);
+      rhoMin = std::min(rhoMin, o.rhoMin);
       isolated += o.isolated, paired += o.paired, pairs += o.pairs;
     }
   };
@@ -74,6 +81,7 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
       P, neighbours, P.range(ParticleRange::kFluid), [&](std::size_t i, const NeighbourRow<D>& row, Tally& mine) {
         mine.v2 = std::max(mine.v2, P.v[i].squaredNorm());
         mine.rhoMax = std::max(mine.rhoMax, P.rho[i]);
+        mine.rhoMin = std::min(mine.rhoMin, P.rho[i]);
         std::size_t count = 0;
         bool close = false;
         row.forEach([&](std::uint32_t, const Vec<D>& rij) {
@@ -85,12 +93,13 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
         mine.isolated += count == 0;
         mine.paired += close;
       });
-  Real v2 = t.v2, rhoMax = t.rhoMax;
+  Real v2 = t.v2, rhoMax = t.rhoMax, rhoMin = t.rhoMin;
   std::size_t isolated = t.isolated, paired = t.paired, pairs = t.pairs;
-  // Over every rank's fluid (no MPI call on one rank).
-  double highest[2] = {v2, rhoMax};
-  mpi::allMax(comm, highest, 2);
-  v2 = highest[0], rhoMax = highest[1];
+  // Over every rank's fluid (no MPI call on one rank); the least as minus
+  // the largest of its negative.
+  double highest[3] = {v2, rhoMax, -rhoMin};
+  mpi::allMax(comm, highest, 3);
+  v2 = highest[0], rhoMax = highest[1], rhoMin = -highest[2];
   std::int64_t counts[4] = {static_cast<std::int64_t>(nFluid), static_cast<std::int64_t>(isolated),
                             static_cast<std::int64_t>(paired), static_cast<std::int64_t>(pairs)};
   mpi::allSum(comm, counts, 4);
@@ -101,6 +110,7 @@ RegimeState measureRegime(const Particles<D>& P, const NeighbourList<D>& neighbo
   s.maxSpeed = std::sqrt(v2);
   s.mach = cRef > 0 ? s.maxSpeed / cRef : 0;
   s.densityMax = rho0 > 0 ? rhoMax / rho0 : 0;
+  s.densityMin = rhoMin;
   if (fluidAll > 0) {
     const Real n = static_cast<Real>(fluidAll);
     s.isolatedFraction = static_cast<Real>(isolated) / n;
@@ -148,6 +158,15 @@ class RegimeCheck {
                     "compressible flow stays within about 1%% (c dt / h = %.3g: a time step too large for the "
                     "integrator, or a sound speed too low for the flow; lower dt, or raise c0)",
                     s.densityMax, 100 * kDensityWindow, cRef_ * dt / h);
+      v.stop = text;
+      return v;
+    }
+    if (s.densityMin <= 0) {
+      std::snprintf(text, sizeof text,
+                    "rarefied: a fluid particle's density is %.3g kg/m^3, not positive, so its volume m/rho is "
+                    "meaningless (c dt / h = %.3g; with continuity density and density diffusion a splash particle "
+                    "leaving a wall can get there at any time step: docs/methods/boundaries.md)",
+                    s.densityMin, cRef_ * dt / h);
       v.stop = text;
       return v;
     }
