@@ -21,10 +21,14 @@
 //                    by design, the seed dam break reaching 1.2 rho0.)
 //                    Measured on the shipped water cases: at most 1.034.
 //   rarefied         a fluid particle's density not positive: its volume
-//                    m/rho is meaningless, whatever the model: stop. (With
-//                    continuity density and density diffusion a splash
-//                    particle that leaves a wall can get there at a small
-//                    time step: docs/methods/boundaries.md.)
+//                    m/rho is meaningless, whatever the model: stop (after
+//                    Mach, which names a time step too large; before
+//                    compressed, which may follow from it in a neighbour
+//                    and would blame the time step). (With continuity
+//                    density and density diffusion a splash particle's
+//                    density drifts from what its packing gives; at a wall
+//                    it can fall below zero, at the shipped time step or a
+//                    few per cent above it: docs/methods/boundaries.md.)
 //   pairing          the fraction of fluid particles with a neighbour closer
 //                    than 0.2 dx: above 10% a warning, once (the pairing
 //                    instability; it need not end the run).
@@ -142,7 +146,7 @@ class RegimeCheck {
   // c_ref dt / h the Mach message names.
   Verdict judge(const RegimeState& s, Real dt, Real h) {
     Verdict v;
-    char text[320];
+    char text[512];
     if (cRef_ > 0 && s.mach > 1) {
       std::snprintf(text, sizeof text,
                     "Mach %.3g: the fastest fluid particle moves at %.3g m/s against the sound speed %.3g m/s; "
@@ -152,21 +156,22 @@ class RegimeCheck {
       v.stop = text;
       return v;
     }
+    if (s.densityMin <= 0) {
+      std::snprintf(text, sizeof text,
+                    "rarefied: a fluid particle's density is %.3g kg/m^3, not positive, so its volume m/rho is "
+                    "meaningless (c dt / h = %.3g; with continuity density and density diffusion a splash "
+                    "particle's density drifts from what its packing gives, and at a wall it can fall below zero "
+                    "even at a shipped case's time step: docs/methods/boundaries.md)",
+                    s.densityMin, cRef_ * dt / h);
+      v.stop = text;
+      return v;
+    }
     if (s.densityMax > 1 + kDensityWindow) {
       std::snprintf(text, sizeof text,
                     "compressed: a fluid particle's density is %.3g rho0, more than %.0f%% above rho0; a weakly-"
                     "compressible flow stays within about 1%% (c dt / h = %.3g: a time step too large for the "
                     "integrator, or a sound speed too low for the flow; lower dt, or raise c0)",
                     s.densityMax, 100 * kDensityWindow, cRef_ * dt / h);
-      v.stop = text;
-      return v;
-    }
-    if (s.densityMin <= 0) {
-      std::snprintf(text, sizeof text,
-                    "rarefied: a fluid particle's density is %.3g kg/m^3, not positive, so its volume m/rho is "
-                    "meaningless (c dt / h = %.3g; with continuity density and density diffusion a splash particle "
-                    "leaving a wall can get there at any time step: docs/methods/boundaries.md)",
-                    s.densityMin, cRef_ * dt / h);
       v.stop = text;
       return v;
     }

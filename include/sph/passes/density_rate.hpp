@@ -53,7 +53,8 @@ struct DensityRatePass {
 // Defined here, instantiated once (src/instantiate_forces_*.cpp).
 template <int D>
 unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
-  const bool blocks = pairBlocksAllowed() && !anyRateTermActive(terms);  // (and Wendland C2, below)
+  const bool blocks = kPairBlocksPay && pairBlocksAllowed() && !anyRateTermActive(terms) &&
+                     std::holds_alternative<WendlandC2<D>>(kernel);  // (the rows' kernel, below)
   const ParticlePrologue<D> prologue = pairArrays(P, false, diffusion.active(), blocks);
   DensityDiffusion<D> diffusionHere = diffusion;
   diffusionHere.volume = prologue.volume;

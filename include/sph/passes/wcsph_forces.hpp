@@ -159,8 +159,9 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   const bool wallRatesHere = walls.densityRates && rateHere;
   DensityDiffusion<D> diffusionHere = diffusion;
   if (!rateHere) diffusionHere.coefficient = 0;
-  const bool blocks = pairBlocksAllowed() && !rateHere && !cspm && !shifting.on &&
-                     !anyPairTermActive(terms);  // (and Wendland C2 with Monaghan's viscosity, below)
+  const bool blocks = kPairBlocksPay && pairBlocksAllowed() && !rateHere && !cspm && !shifting.on &&
+                     !anyPairTermActive(terms) && std::holds_alternative<WendlandC2<D>>(kernel) &&
+                     std::holds_alternative<MonaghanViscosityChoice>(viscosity);  // (the rows' physics, below)
   const ParticlePrologue<D> prologue = pairArrays(P, true, diffusionHere.active(), blocks);
   diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(
