@@ -235,8 +235,9 @@ const std::vector<KeySpec>& caseKeys() {
        within(0.001, 100), "0.1", nullptr},
       {"regime_check", G::kNumerics, &C::regimeCheck, "",
        "Every 10 steps and before every snapshot: Mach number above 1, a Tait fluid 10% above rho0, a fluid "
-       "particle's density not positive, the fluid breaking up (over half its particles alone), particles collapsing (4x the neighbours), pairing (a "
-       "warning): stop the run naming the cause (no snapshot of it written), only warn, or off",
+       "particle's density not positive, the fluid breaking up (over half its particles alone), particles "
+       "collapsing (4x the neighbours), pairing (a warning): stop the run naming the cause (no snapshot of it "
+       "written), only warn, or off",
        {}, nullptr, regimeCheckNames},
       {"threads", G::kNumerics, &C::threads, "",
        "OpenMP threads: a count from 1 to 1024 (OMP_NUM_THREADS is obeyed too), or auto: start from the cores "
