@@ -188,7 +188,7 @@ int checkCase(const CaseConfig& given, std::ostream& out, std::ostream& err) {
              "isolated splash particle: boundaries/wall_guard.hpp)\n";
     else
       warn("wall_guard = false: the wall particles alone hold the fluid; an isolated splash particle at p <= 0 can "
-           "pass them and stop the run (measured: the obstacle dam break at 0.33 s)");
+           "pass them and stop the run (measured: the obstacle dam break, through the floor at 0.69 s)");
   }
   if (composedModel(c)) {
     const KernelAdvice& kernel = chosenKernelRow<D>(c).traits;

@@ -59,7 +59,10 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, continuity, {}, walls,
                            true, false, std::nullopt, s.terms};
   if (continuity && s.diffusion.delta > 0) {
-    forces.diffusion = DensityDiffusion<D>::build(s.diffusion, h, c0, s.restDensity, g);
+    // Clamped pressures: the diffusion reads the density the pressure reads.
+    const Real zeroPressure = s.clampNegative ? std::visit([](const auto& e) { return e.density(0); }, s.eos)
+                                              : -std::numeric_limits<Real>::infinity();
+    forces.diffusion = DensityDiffusion<D>::build(s.diffusion, h, c0, s.restDensity, g, zeroPressure);
     info.termNames.push_back(s.diffusion.term);
   }
   forces.wallViscosity = s.noSlip;

@@ -19,6 +19,7 @@
 #include "reordered_sum_bound.hpp"
 #include "test_support.hpp"
 
+#include <limits>
 #include <random>
 
 using namespace sph;
@@ -75,6 +76,37 @@ BOOST_AUTO_TEST_CASE(diffusion_derives_its_coefficient) {
   BOOST_TEST(densityDiffusion(c).delta == 0.1);
   c.diffusion = "fourtakas";
   BOOST_TEST(densityDiffusion(c).hydrostatic);
+}
+
+// With pressures clamped at rho_c (negative_pressure = clamp) the diffusion
+// reads max(rho, rho_c): two particles of a splash, both below rho_c, do
+// not diffuse at all; against a denser one, a particle below rho_c counts as
+// rho_c. Without gravity psi_ij is the density difference alone, so the
+// clamped rate is the unclamped one scaled by the ratio of the differences
+// read (worked by hand: 300 against 600 -> 0; 300 against 1010 with rho_c =
+// 1000 -> 10/710 of the unclamped rate; both above rho_c -> unchanged).
+BOOST_AUTO_TEST_CASE(clamped_pressures_diffuse_the_density_the_pressure_reads) {
+  const Vec<2> none = Vec<2>::Zero();
+  const DensityDiffusionChoice choice{0.1, true, "x"};
+  const auto free = DensityDiffusion<2>::build(choice, 0.02, 40, 1000, none);
+  const auto clamped = DensityDiffusion<2>::build(choice, 0.02, 40, 1000, none, 1000);
+  BOOST_TEST(clamped.floor == 1000.0);
+  BOOST_TEST(free.floor == -std::numeric_limits<Real>::infinity());
+  CaseConfig c = block("continuity");
+  Scene<2> s = test::sceneOf<2>(c);
+  Particles<2>& P = s.particles();
+  Pair<2> pair{0, 1, Vec<2>(0.01, 0.0), 0.01, 0.25, 0, Vec<2>(-3e4, 0.0), Vec<2>(-3e4, 0.0)};
+  auto rate = [&](const DensityDiffusion<2>& d, Real rhoi, Real rhoj) {
+    P.rho[0] = rhoi, P.rho[1] = rhoj;
+    PairRates<2> r;
+    d.add(pair, P, r);
+    return r.drho;
+  };
+  BOOST_TEST(rate(free, 300, 600) != 0.0);
+  BOOST_TEST(rate(clamped, 300, 600) == 0.0);
+  BOOST_TEST(rate(clamped, 600, 300) == 0.0);
+  BOOST_TEST(rate(clamped, 300, 1010) == rate(free, 300, 1010) * 10 / 710, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(rate(clamped, 1005, 1010) == rate(free, 1005, 1010));
 }
 
 BOOST_AUTO_TEST_CASE(rate_equals_the_derivative_of_summation_density) {
@@ -211,11 +243,13 @@ void checkDensityRateBlocks() {
     const Particles<D>& P = s.particles();
     const WendlandC2<D> kernel(c.h);
     const WallSums walls{true, std::string(boundary) == "dynamic"};
-    for (int form = 0; form < 3; ++form) {  // none, Molteni, Fourtakas
+    for (int form = 0; form < 4; ++form) {  // none, Molteni, Fourtakas, Fourtakas with pressures clamped at rho0
       DensityDiffusionChoice choice;
       choice.delta = form == 0 ? 0.0 : 0.1;
-      choice.hydrostatic = form == 2;
-      const DensityDiffusion<D> diffusion = DensityDiffusion<D>::build(choice, c.h, c.c0, c.rho0, gravityVector<D>(c));
+      choice.hydrostatic = form >= 2;
+      const Real zeroPressure = form == 3 ? c.rho0 : -std::numeric_limits<Real>::infinity();
+      const DensityDiffusion<D> diffusion =
+          DensityDiffusion<D>::build(choice, c.h, c.c0, c.rho0, gravityVector<D>(c), zeroPressure);
       Particles<D> lender = P;  // lends the arrays the loops' prologue fills
       const ParticlePrologue<D> prologue = pairArrays(lender, false, diffusion.active(), true);
       DensityDiffusion<D> here = diffusion;

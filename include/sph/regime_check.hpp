@@ -25,10 +25,11 @@
 //                    Mach, which names a time step too large; before
 //                    compressed, which may follow from it in a neighbour
 //                    and would blame the time step). (With continuity
-//                    density and density diffusion a splash particle's
-//                    density drifts from what its packing gives; at a wall
-//                    it can fall below zero, at the shipped time step or a
-//                    few per cent above it: docs/methods/boundaries.md.)
+//                    density and density diffusion of negative pressures
+//                    kept, a splash particle's density drifts from what its
+//                    packing gives, and at a wall it can fall below zero;
+//                    clamped, the diffusion leaves them alone:
+//                    docs/methods/boundaries.md.)
 //   pairing          the fraction of fluid particles with a neighbour closer
 //                    than 0.2 dx: above 10% a warning, once (the pairing
 //                    instability; it need not end the run).
@@ -159,9 +160,10 @@ class RegimeCheck {
     if (s.densityMin <= 0) {
       std::snprintf(text, sizeof text,
                     "rarefied: a fluid particle's density is %.3g kg/m^3, not positive, so its volume m/rho is "
-                    "meaningless (c dt / h = %.3g; with continuity density and density diffusion a splash "
-                    "particle's density drifts from what its packing gives, and at a wall it can fall below zero "
-                    "even at a shipped case's time step: docs/methods/boundaries.md)",
+                    "meaningless (c dt / h = %.3g; with continuity density, density diffusion and negative "
+                    "pressures kept, a splash particle's density drifts from what its packing gives, and at a "
+                    "wall it can fall below zero; clamped, the diffusion leaves densities below rho0 alone: "
+                    "docs/methods/boundaries.md)",
                     s.densityMin, cRef_ * dt / h);
       v.stop = text;
       return v;

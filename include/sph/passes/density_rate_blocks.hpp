@@ -16,6 +16,7 @@
 #include "sph/pair_loop_blocks.hpp"
 #include "sph/terms/density_diffusion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -40,7 +41,7 @@ struct DensityRateRow {
     const Real* rho = P.rho.data();
     Real xi[D], vi[D], hydrostatic[D];
     for (int d = 0; d < D; ++d) xi[d] = x[D * i + d], vi[d] = v[D * i + d], hydrostatic[d] = diffusion.hydrostatic[d];
-    const Real rhoi = rho[i];
+    const Real floor = diffusion.floor, rhoi = std::max(rho[i], floor);
     const bool diffuse = kDiffusion && diffusion.coefficient != 0;
     const Real coefficient = diffusion.coefficient, eta2 = diffusion.eta2;
     const Real* V = diffuse ? diffusion.volume : rho;  // (a lane reads it either way: never a null array)
@@ -59,7 +60,7 @@ struct DensityRateRow {
         for (int d = 0; d < D; ++d) vij[d] = vi[d] - vj(d, l);
         const Real continuity = m[j] * laneDot<D>(vij, q.g);
         if constexpr (kDiffusion) {
-          const Real psi = (rho[j] - rhoi) + laneDot<D>(hydrostatic, q.rij);
+          const Real psi = (std::max(rho[j], floor) - rhoi) + laneDot<D>(hydrostatic, q.rij);
           const Real diffused = coefficient * V[j] * psi * (-laneDot<D>(q.rij, q.g)) / (q.r * q.r + eta2);
           sum[l] += laneCounts(l, filled, q.r2, support2) ? continuity + (diffuse ? diffused : 0.0) : 0.0;
         } else {
