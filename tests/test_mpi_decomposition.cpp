@@ -18,6 +18,7 @@
 #include "sph/neighbour_list.hpp"
 #include "sph/particles.hpp"
 #include "sph/periodic_ghosts.hpp"
+#include "sph/regime_check.hpp"
 
 #include "mpi_session_fixture.hpp"
 
@@ -358,6 +359,28 @@ void checkPeriodicGhostsKept(const Global<2>& g) {
 Global<2> global2d() { return makeGlobal<2>(0.1, 600, 120, 0.01); }
 Global<3> global3d() { return makeGlobal<3>(0.15, 800, 150, 0.02); }
 
+// The regime check's density extremes over every rank's fluid
+// (regime_check.hpp: the largest, and the least reduced as minus the
+// largest of its negative): fluid id 0 given a negative density and id 1 a
+// large one, each found on every rank, whichever rank holds it.
+void checkRegimeExtremes(const Global<2>& g) {
+  const Communicator c = world();
+  DomainDecomposition<2> dd(c, g.radius);
+  Particles<2> P = migrated(g, dd);
+  sph::HashGrid<2> grid(g.radius);
+  sph::NeighbourList<2> list;
+  grid.build(P.x, P.fluidCount(), P.size(), P.ghostFluidEnd());
+  P.permute(grid.order());
+  list.build(grid, P.x, g.radius, P.fluidCount(), P.size());
+  for (std::size_t i = 0; i < P.fluidCount(); ++i) {
+    if (P.id[i] == 0) P.rho[i] = -5;
+    if (P.id[i] == 1) P.rho[i] = 1e6;
+  }
+  const sph::RegimeState s = sph::measureRegime(P, list, 10.0, 0.0, 1000.0, g.radius, c);
+  BOOST_TEST(s.densityMin == -5.0);
+  BOOST_TEST(s.densityMax == 1000.0);
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(mpi_decomposition)
@@ -378,5 +401,6 @@ BOOST_AUTO_TEST_CASE(halo_pairs_and_refresh_3d) { checkHaloPairsAndRefresh(globa
 BOOST_AUTO_TEST_CASE(periodic_ghosts_kept_2d) { checkPeriodicGhostsKept(global2d()); }
 BOOST_AUTO_TEST_CASE(one_rank_2d) { checkOneRank(global2d()); }
 BOOST_AUTO_TEST_CASE(one_rank_3d) { checkOneRank(global3d()); }
+BOOST_AUTO_TEST_CASE(regime_extremes_over_ranks) { checkRegimeExtremes(global2d()); }
 
 BOOST_AUTO_TEST_SUITE_END()
