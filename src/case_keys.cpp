@@ -226,7 +226,7 @@ const std::vector<KeySpec>& caseKeys() {
        "How the density rate, pressure, sound speed and mass are stored: double, or mixed (single precision, 16 "
        "bytes per particle fewer, 12 without a sound speed field; positions, velocities, accelerations, density "
        "and every sum stay in double). "
-       "Fixed when sph is built (cmake -DSPH_PRECISION=double | mixed); a build refuses the other",
+       "Fixed when sph is built (cmake -DSPH_PRECISION=mixed, the default | double); a build refuses the other",
        {}, "the build's (sph --version)", precisionNames},
       {"rebalance_tolerance", G::kNumerics, &C::rebalanceTolerance, "",
        "On several MPI ranks: the particles are shared out again (along the Morton curve, weighted by each "
