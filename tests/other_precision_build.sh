@@ -27,8 +27,9 @@ esac
   { echo "FAILED: $py lacks numpy or VTK (Debian's python3: scripts/setup.sh)"; exit 1; }
 mkdir -p "$work"
 cmake -S "$src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DSPH_PRECISION="$precision" -DSPH_NATIVE="$native" \
-  > "$work/configure.log"
-cmake --build "$work/build" -j2 --target sph > "$work/build.log"
+  > "$work/configure.log" 2>&1 || { echo "FAILED: configuring the $precision build"; tail -20 "$work/configure.log"; exit 1; }
+cmake --build "$work/build" -j2 --target sph > "$work/build.log" 2>&1 ||
+  { echo "FAILED: building the $precision sph"; tail -40 "$work/build.log"; exit 1; }
 version=$("$work/build/sph" --version)
 echo "$version"
 case "$version" in *"(precision $precision)"*) ;; *) echo "FAILED: the $precision build says '$version'"; exit 1 ;; esac

@@ -80,7 +80,8 @@ BOOST_AUTO_TEST_CASE(diffusion_derives_its_coefficient) {
 
 // With pressures clamped at rho_c (negative_pressure = clamp) the diffusion
 // reads max(rho, rho_c): two particles of a splash, both below rho_c, do
-// not diffuse at all; against a denser one, a particle below rho_c counts as
+// not diffuse at all without gravity (with it, by the Fourtakas form's
+// hydrostatic part alone); against a denser one, a particle below rho_c counts as
 // rho_c. Without gravity psi_ij is the density difference alone, so the
 // clamped rate is the unclamped one scaled by the ratio of the differences
 // read (worked by hand: 300 against 600 -> 0; 300 against 1010 with rho_c =
@@ -250,6 +251,12 @@ void checkDensityRateBlocks() {
       const Real zeroPressure = form == 3 ? c.rho0 : -std::numeric_limits<Real>::infinity();
       const DensityDiffusion<D> diffusion =
           DensityDiffusion<D>::build(choice, c.h, c.c0, c.rho0, gravityVector<D>(c), zeroPressure);
+      if (form == 3) {  // the floor is read: some fluid particles of the column are below rho0
+        std::size_t below = 0;
+        for (std::size_t i = 0; i < P.fluidCount(); ++i) below += P.rho[i] < c.rho0;
+        BOOST_TEST_INFO(D << "D, " << boundary << ": " << below << " fluid particles below rho0");
+        BOOST_TEST(below > 0u);
+      }
       Particles<D> lender = P;  // lends the arrays the loops' prologue fills
       const ParticlePrologue<D> prologue = pairArrays(lender, false, diffusion.active(), true);
       DensityDiffusion<D> here = diffusion;
