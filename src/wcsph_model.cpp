@@ -59,9 +59,13 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   WcsphForcePass<D> forces{s.kernel, s.viscosity, s.bodies, s.xsphEpsilon, continuity, {}, walls,
                            true, false, std::nullopt, s.terms};
   if (continuity && s.diffusion.delta > 0) {
-    // Clamped pressures: the diffusion reads the density the pressure reads.
-    const Real zeroPressure = s.clampNegative ? std::visit([](const auto& e) { return e.density(0); }, s.eos)
-                                              : -std::numeric_limits<Real>::infinity();
+    // Clamped pressures (negative_pressure = clamp, or an EOS that clamps):
+    // the diffusion reads the density the pressure reads.
+    const bool clamped = s.clampNegative || std::visit([](const auto& e) {
+                           return std::is_same_v<std::decay_t<decltype(e)>, ClampedLinearEos>;
+                         }, s.eos);
+    const Real zeroPressure = clamped ? std::visit([](const auto& e) { return e.density(0); }, s.eos)
+                                      : -std::numeric_limits<Real>::infinity();
     forces.diffusion = DensityDiffusion<D>::build(s.diffusion, h, c0, s.restDensity, g, zeroPressure);
     info.termNames.push_back(s.diffusion.term);
   }

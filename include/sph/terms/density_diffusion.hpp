@@ -15,9 +15,9 @@
 // Fluid pairs only. With a density gradient from gravity the Molteni form
 // diffuses mass upwards and a column sinks; the Fourtakas form does not.
 //
-// With negative pressures clamped (negative_pressure = clamp) rho_i and
-// rho_j above read max(rho, rho_c), rho_c the density of zero pressure: the
-// density the equation of state reads. A splash's densities below rho_c
+// With negative pressures clamped (negative_pressure = clamp, or eos =
+// linear_clamped) rho_i and rho_j above read max(rho, rho_c), rho_c the
+// density of zero pressure: the density the equation of state reads. A splash's densities below rho_c
 // carry no pressure, and diffusing them drew a particle's density away from
 // what its packing gives, by up to 400 kg/m^3 in the obstacle dam break
 // (docs/methods/boundaries.md, "What a splash does to a particle's
