@@ -12,6 +12,7 @@
 #include "sph/passes/force_blocks.hpp"
 #include "sph/passes/summation_density_blocks.hpp"
 #include "sph/terms/monaghan_viscosity.hpp"
+#include "sph/terms/morris_viscosity.hpp"
 #include "sph/terms/equation_of_state.hpp"
 #include "sph/terms/summation_density.hpp"
 #include "sph/terms/symmetric_pressure.hpp"
@@ -191,15 +192,21 @@ BOOST_AUTO_TEST_CASE(adaptive_time_step_names_its_criterion) {
 
 // The blocks' accelerations against the scalar pair loop's (pair_loop.hpp
 // with the force pass's packs: symmetric pressure, then Monaghan's
-// viscosity, and XSPH's sum when on), on a dam-break column after 60 steps
-// (disordered, the list's skin holding pairs beyond the support, approaching
-// and receding pairs), with dummy and dynamic walls, with beta 0 and 1, with
-// XSPH off and on, in 2D and 3D. Tolerance: the blocks add the same terms in
+// viscosity or Morris', and XSPH's sum when on), on a dam-break column after
+// 60 steps (disordered, the list's skin holding pairs beyond the support,
+// approaching and receding pairs), with dummy and dynamic walls, with
+// Monaghan's beta 0 and 1 and with Morris' viscosity (nu = 1e-4 m^2/s,
+// within the viscous limit 0.125 h^2 / nu = 2.8e-4 s of dt = 1e-4 s; the
+// column settled with it, so that the dummy walls' vWall is the one
+// Adami's extrapolation gave), with XSPH off and on, in 2D and 3D.
+// Tolerance: the blocks add the same terms in
 // another order, so each component is within 4 n eps sum_j |t_j| of the
 // scalar loop's (reordered_sum_bound.hpp; the largest difference is printed
 // against it). A block that dropped the viscosity, or counted a padding lane
 // (a repeat of the block's first pair), would be off by a whole term; one
-// that left XSPH's sum out, or took v_i - v_j for v_j - v_i, by all of it.
+// that left XSPH's sum out, or took v_i - v_j for v_j - v_i, by all of it;
+// a Morris wall row that read the walls' v instead of their vWall, by the
+// walls' share of the viscous term.
 // (A pair beyond the support adds an exact 0 either way: the kernel and its
 // gradient are 0 there.) (The pass uses the blocks only where they pay, with
 // AVX2 or AVX-512; the function is compared here on every build.)
@@ -215,80 +222,98 @@ void checkForceBlocks() {
   struct NoRates {
     void operator()(std::size_t, Particles<D>&, const PairRates<D>&) const {}
   };
+  using K = WendlandC2<D>;
+  const Real nu = 1e-4;
+  // One comparison: `viscosity` and `wallViscosity` the scalar evaluators,
+  // row(xsph, wall, prologue, m, Q) the blocks' row of particles Q.
+  auto check = [&](const std::string& label, const Scene<D>& s, const CaseConfig& c, const auto& viscosity,
+                   const auto& wallViscosity, const auto& row) {
+    const Particles<D>& P = s.particles();
+    const K kernel(c.h);
+    for (const bool xsph : {false, true}) {
+      Particles<D> lender = P;  // lends the arrays the loops' prologue fills
+      const ParticlePrologue<D> prologue = pairArrays(lender, true, false, true);
+      const SymmetricPressure pressure{false, prologue.pOverRho2};
+      const auto wallPairs = std::make_tuple(pressure, wallViscosity);
+      const PairLoopParts parts{true, false};
+      Particles<D> blocks = P, scalar = P;
+      for (auto& a : blocks.a) a.setConstant(-1);
+      for (auto& a : scalar.a) a.setConstant(-2);
+      Particles<D> magnitude = P;
+      const std::size_t n = P.totalSize();
+      std::vector<Vec<D>> xsphBlocks(n, Vec<D>::Constant(-1)), xsphScalar(n, Vec<D>::Constant(-2)),
+          xsphMagnitude(n, Vec<D>::Zero());
+      // XSPH off: epsilon 0, an evaluator that adds nothing (as the pass's).
+      const auto fluidPairs = std::make_tuple(pressure, viscosity, Xsph<K>{kernel, xsph ? 0.5 : 0.0});
+      auto loop = [&](Particles<D>& Q, std::vector<Vec<D>>& xsphSums, const auto& fluid, const auto& walls,
+                      const auto& fluidRow, const auto& wallRow) {
+        runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, walls, std::tuple<>{},
+                    StoreRates{&xsphSums}, NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow, wallRow);
+      };
+      // The wall neighbours in blocks too: the row without XSPH (the
+      // walls' pack has none).
+      const Real* m = realMasses(blocks, prologue);
+      const auto wallRow = row(std::false_type{}, std::true_type{}, prologue, m, blocks);
+      if (xsph)
+        loop(blocks, xsphBlocks, fluidPairs, wallPairs, row(std::true_type{}, std::false_type{}, prologue, m, blocks),
+             wallRow);
+      else
+        loop(blocks, xsphBlocks, fluidPairs, wallPairs, row(std::false_type{}, std::false_type{}, prologue, m, blocks),
+             wallRow);
+      loop(scalar, xsphScalar, fluidPairs, wallPairs, PairByPair{}, PairByPair{});
+      loop(magnitude, xsphMagnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{},
+           PairByPair{});
+      std::size_t beyond = 0, differ = 0, loaded = 0, smoothed = 0;
+      Real worst = 0;  // the largest difference over its bound
+      auto compare = [&](std::size_t rowLength, Real blockValue, Real scalarValue, Real magnitudeValue) {
+        const Real bound = test::reorderedSumBound(rowLength, magnitudeValue);
+        const Real difference = std::abs(blockValue - scalarValue);
+        beyond += !(difference <= bound);
+        if (bound > 0) worst = std::max(worst, difference / bound);
+      };
+      for (std::size_t i = 0; i < P.fluidCount(); ++i) {
+        const typename NeighbourList<D>::Row r = s.neighbours().row(i);
+        const auto length = static_cast<std::size_t>(r.end - r.begin);
+        for (int d = 0; d < D; ++d) {
+          compare(length, blocks.a[i][d], scalar.a[i][d], magnitude.a[i][d]);
+          compare(length, xsphBlocks[i][d], xsphScalar[i][d], xsphMagnitude[i][d]);
+        }
+        differ += blocks.a[i] != scalar.a[i] || xsphBlocks[i] != xsphScalar[i];
+        loaded += scalar.a[i].norm() > 1;
+        smoothed += xsphScalar[i].norm() > 1e-6 * c.c0;
+      }
+      BOOST_TEST_MESSAGE(D << "D, " << label << ", xsph " << xsph << ": " << differ << " of " << P.fluidCount()
+                           << " accelerations or XSPH sums differ in their last bits, the largest difference "
+                           << worst << " of its bound");
+      BOOST_TEST_INFO(D << "D, " << label << ", xsph " << xsph);
+      BOOST_TEST(beyond == 0u);
+      BOOST_TEST(loaded > P.fluidCount() / 4);  // the accelerations are not trivially zero
+      // XSPH's sums are not trivially zero when on (the settled column
+      // still moves), and exactly zero when off.
+      if (xsph) BOOST_TEST(smoothed > P.fluidCount() / 4);
+      else BOOST_TEST(smoothed == 0u);
+    }
+  };
   for (const char* boundary : {"dummy", "dynamic"}) {
     const CaseConfig c = test::waterColumn(boundary, 0.3, D);
     const Scene<D> s = test::settled<D>(c, 60);
-    const Particles<D>& P = s.particles();
-    const WendlandC2<D> kernel(c.h);
+    const K kernel(c.h);
     for (const Real beta : {0.0, 1.0})
-      for (const bool xsph : {false, true}) {
-        Particles<D> lender = P;  // lends the arrays the loops' prologue fills
-        const ParticlePrologue<D> prologue = pairArrays(lender, true, false, true);
-        const SymmetricPressure pressure{false, prologue.pOverRho2};
-        const MonaghanViscosity<WendlandC2<D>> viscosity{kernel, 0.02, beta};
-        const auto wallPairs =
-            std::make_tuple(pressure, MonaghanViscosity<WendlandC2<D>, true>{kernel, 0.02, beta});
-        const PairLoopParts parts{true, false};
-        Particles<D> blocks = P, scalar = P;
-        for (auto& a : blocks.a) a.setConstant(-1);
-        for (auto& a : scalar.a) a.setConstant(-2);
-        Particles<D> magnitude = P;
-        const std::size_t n = P.totalSize();
-        std::vector<Vec<D>> xsphBlocks(n, Vec<D>::Constant(-1)), xsphScalar(n, Vec<D>::Constant(-2)),
-            xsphMagnitude(n, Vec<D>::Zero());
-        // XSPH off: epsilon 0, an evaluator that adds nothing (as the pass's).
-        const auto fluidPairs = std::make_tuple(pressure, viscosity, Xsph<WendlandC2<D>>{kernel, xsph ? 0.5 : 0.0});
-        auto loop = [&](Particles<D>& Q, std::vector<Vec<D>>& xsphSums, const auto& fluid, const auto& walls,
-                        const auto& fluidRow, const auto& wallRow) {
-          runPairLoop(Q, s.neighbours(), kernel, kernel.support(), fluid, walls, std::tuple<>{},
-                      StoreRates{&xsphSums}, NoRates{}, parts, NoGradientCorrection{}, prologue, fluidRow, wallRow);
-        };
-        // The wall neighbours in blocks too: the row without XSPH (the
-        // walls' pack has none).
-        const Real* m = realMasses(blocks, prologue);
-        const PressureViscosityRow<D, WendlandC2<D>> wallRow{blocks, kernel, prologue.pOverRho2, 0.02, beta, m};
-        if (xsph)
-          loop(blocks, xsphBlocks, fluidPairs, wallPairs,
-               PressureViscosityRow<D, WendlandC2<D>, true>{blocks, kernel, prologue.pOverRho2, 0.02, beta, m},
-               wallRow);
-        else
-          loop(blocks, xsphBlocks, fluidPairs, wallPairs,
-               PressureViscosityRow<D, WendlandC2<D>>{blocks, kernel, prologue.pOverRho2, 0.02, beta, m}, wallRow);
-        loop(scalar, xsphScalar, fluidPairs, wallPairs, PairByPair{}, PairByPair{});
-        loop(magnitude, xsphMagnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), PairByPair{},
-             PairByPair{});
-        std::size_t beyond = 0, differ = 0, loaded = 0, smoothed = 0;
-        Real worst = 0;  // the largest difference over its bound
-        auto compare = [&](std::size_t rowLength, Real blockValue, Real scalarValue, Real magnitudeValue) {
-          const Real bound = test::reorderedSumBound(rowLength, magnitudeValue);
-          const Real difference = std::abs(blockValue - scalarValue);
-          beyond += !(difference <= bound);
-          if (bound > 0) worst = std::max(worst, difference / bound);
-        };
-        for (std::size_t i = 0; i < P.fluidCount(); ++i) {
-          const typename NeighbourList<D>::Row row = s.neighbours().row(i);
-          const auto length = static_cast<std::size_t>(row.end - row.begin);
-          for (int d = 0; d < D; ++d) {
-            compare(length, blocks.a[i][d], scalar.a[i][d], magnitude.a[i][d]);
-            compare(length, xsphBlocks[i][d], xsphScalar[i][d], xsphMagnitude[i][d]);
-          }
-          differ += blocks.a[i] != scalar.a[i] || xsphBlocks[i] != xsphScalar[i];
-          loaded += scalar.a[i].norm() > 1;
-          smoothed += xsphScalar[i].norm() > 1e-6 * c.c0;
-        }
-        BOOST_TEST_MESSAGE(D << "D, " << boundary << ", beta " << beta << ", xsph " << xsph << ": " << differ
-                                    << " of " << P.fluidCount()
-                                    << " accelerations or XSPH sums differ in their last bits, the largest "
-                                       "difference "
-                                    << worst << " of its bound");
-        BOOST_TEST_INFO(D << "D, " << boundary << ", beta " << beta << ", xsph " << xsph);
-        BOOST_TEST(beyond == 0u);
-        BOOST_TEST(loaded > P.fluidCount() / 4);  // the accelerations are not trivially zero
-        // XSPH's sums are not trivially zero when on (the settled column
-        // still moves), and exactly zero when off.
-        if (xsph) BOOST_TEST(smoothed > P.fluidCount() / 4);
-        else BOOST_TEST(smoothed == 0u);
-      }
+      check(std::string(boundary) + ", monaghan, beta " + std::to_string(beta), s, c,
+            MonaghanViscosity<K>{kernel, 0.02, beta}, MonaghanViscosity<K, true>{kernel, 0.02, beta},
+            [&](auto xsph, auto, const ParticlePrologue<D>& prologue, const Real* m, const Particles<D>& Q) {
+              return PressureViscosityRow<D, K, decltype(xsph)::value>{Q, kernel, prologue.pOverRho2, 0.02, beta, m};
+            });
+    CaseConfig laminar = c;
+    laminar.viscosity = "morris", laminar.nu = nu;
+    const Scene<D> l = test::settled<D>(laminar, 60);
+    check(std::string(boundary) + ", morris", l, laminar, MorrisViscosity<K>{kernel, nu},
+          MorrisViscosity<K, true>{kernel, nu},
+          [&](auto xsph, auto wall, const ParticlePrologue<D>& prologue, const Real* m, const Particles<D>& Q) {
+            const Real* vWall = decltype(wall)::value ? Q.vWall.front().data() : nullptr;
+            return PressureViscosityRow<D, K, decltype(xsph)::value, true>{
+                Q, kernel, prologue.pOverRho2, 0, 0, m, nu, vWall};
+          });
   }
 }
 
@@ -366,7 +391,9 @@ BOOST_AUTO_TEST_CASE(summation_density_blocks_match_the_scalar_loop) {
 // for 150 steps with dummy and dynamic walls, leap-frog (both walks in
 // blocks), RK4 (the density rate in the force pass: the force walk stays
 // scalar), XSPH on (both walks in blocks, the force row with XSPH's
-// sum) and free slip (the wall rows without viscosity); every walk takes
+// sum) and free slip (the wall rows without viscosity), each with
+// Monaghan's viscosity, and leap-frog with Morris' (nu = 1e-4 m^2/s: dummy
+// walls no-slip and free-slip, dynamic walls); every walk takes
 // the wall neighbours in blocks too. The two runs add each sum in another
 // order, so they part by
 // round-off, which the flow then carries: every particle's x within
@@ -383,12 +410,16 @@ void checkRunsWithBlocks() {
     const char* integrator;
     Real xsph;
     const char* slip = "no_slip";
+    const char* viscosity = "monaghan";  // morris: nu = 1e-4 m^2/s
   };
   for (const Variant& variant :
        {Variant{"dummy", "leap_frog", 0}, Variant{"dynamic", "leap_frog", 0}, Variant{"dummy", "rk4", 0},
-        Variant{"dummy", "leap_frog", 0.5}, Variant{"dummy", "leap_frog", 0, "free_slip"}}) {
+        Variant{"dummy", "leap_frog", 0.5}, Variant{"dummy", "leap_frog", 0, "free_slip"},
+        Variant{"dummy", "leap_frog", 0, "no_slip", "morris"}, Variant{"dynamic", "leap_frog", 0, "no_slip", "morris"},
+        Variant{"dummy", "leap_frog", 0, "free_slip", "morris"}}) {
     CaseConfig c = test::waterColumn(variant.boundary, 0.2, D);
     c.integrator = variant.integrator, c.xsph = variant.xsph, c.wallSlip = variant.slip;
+    c.viscosity = variant.viscosity, c.nu = 1e-4;
     std::vector<Particles<D>> ends;
     for (const bool allowed : {true, false}) {
       pairBlocksAllowed() = allowed;
@@ -400,7 +431,7 @@ void checkRunsWithBlocks() {
     const Particles<D>& a = ends[0];
     const Particles<D>& b = ends[1];
     BOOST_TEST_INFO(D << "D, " << variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph << ", "
-                      << variant.slip);
+                      << variant.slip << ", " << variant.viscosity);
     BOOST_REQUIRE(a.size() == b.size());
     Real dx = 0, dv = 0, drho = 0;
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -410,7 +441,7 @@ void checkRunsWithBlocks() {
       drho = std::max(drho, std::abs(a.rho[i] - b.rho[i]) / c.rho0);
     }
     BOOST_TEST_MESSAGE(D << "D, " << variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph
-                                        << ", " << variant.slip << ": largest |dx|/h " << dx << ", |dv|/c0 " << dv
+                                        << ", " << variant.slip << ", " << variant.viscosity << ": largest |dx|/h " << dx << ", |dv|/c0 " << dv
                                         << ", |drho|/rho0 " << drho);
     BOOST_TEST(dx <= 1e-9);
     BOOST_TEST(dv <= 1e-9);

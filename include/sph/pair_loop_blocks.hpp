@@ -176,10 +176,10 @@ struct NarrowBlock {
 };
 
 // One lane's pair, as makePair (pair_loop.hpp) forms it: r_ij = x_i - x_j,
-// r^2, r, and grad_i W = dWdr_r(r) r_ij.
+// r^2, r, w = dWdr_r(r) and grad_i W = w r_ij.
 template <int D>
 struct LanePair {
-  Real rij[D], r2, r, g[D];
+  Real rij[D], r2, r, w, g[D];
 };
 template <int D, class Kernel>
 [[gnu::always_inline]] inline LanePair<D> lanePair(const Real (&xi)[D], const BlockVectors<D>& xj, int l,
@@ -191,8 +191,8 @@ template <int D, class Kernel>
     q.r2 += q.rij[d] * q.rij[d];
   }
   q.r = std::sqrt(q.r2);
-  const Real w = k.dWdr_r(q.r);
-  for (int d = 0; d < D; ++d) q.g[d] = w * q.rij[d];
+  q.w = k.dWdr_r(q.r);
+  for (int d = 0; d < D; ++d) q.g[d] = q.w * q.rij[d];
   return q;
 }
 

@@ -27,9 +27,10 @@
 // epilogue; an inactive one is one predictable branch, not an instantiation.
 // The water physics (Wendland C2, symmetric pressure and Monaghan's
 // viscosity, the density rate computed apart, XSPH or not, nothing else in
-// the pack) takes its pairs, fluid and wall, in SIMD blocks on a build for
-// AVX2 or AVX-512 (force_blocks.hpp: the same accelerations up to the
-// order of the sum).
+// the pack), and the laminar one (the same with Morris' viscosity), take
+// their pairs, fluid and wall, in SIMD blocks on a build for AVX2 or
+// AVX-512 (force_blocks.hpp: the same accelerations up to the order of the
+// sum).
 #pragma once
 
 #include "sph/boundaries/wall_sums.hpp"
@@ -161,7 +162,8 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   if (!rateHere) diffusionHere.coefficient = 0;
   const bool blocks = kPairBlocksPay && pairBlocksAllowed() && !rateHere && !cspm && !shifting.on &&
                      !anyPairTermActive(terms) && std::holds_alternative<WendlandC2<D>>(kernel) &&
-                     std::holds_alternative<MonaghanViscosityChoice>(viscosity);  // (the rows' physics, below)
+                     (std::holds_alternative<MonaghanViscosityChoice>(viscosity) ||
+                      std::holds_alternative<MorrisViscosityChoice>(viscosity));  // (the rows' physics, below)
   const ParticlePrologue<D> prologue = pairArrays(P, true, diffusionHere.active(), blocks);
   diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(
@@ -203,6 +205,20 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
               return loop(PressureViscosityRow<D, K, true>{P, k, prologue.pOverRho2, visc.alpha, visc.beta, m},
                           wallRow);
             return loop(PressureViscosityRow<D, K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta, m}, wallRow);
+          }
+        }
+        // The laminar physics (Morris): a wall neighbour shows the fluid its
+        // vWall (nu of the walls' own evaluator: 0 with free slip).
+        if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>> &&
+                      std::is_same_v<V, MorrisViscosityChoice>) {
+          const Real* m = realMasses(P, prologue);
+          if (blocks && prologue.pOverRho2 && m) {
+            const Real wallNu = std::get<0>(viscosityPack<K, true>(k, visc, wallViscosity)).nu;
+            const Real* vWall = P.vWall.empty() ? nullptr : P.vWall.front().data();
+            const PressureViscosityRow<D, K, false, true> wallRow{P, k, prologue.pOverRho2, 0, 0, m, wallNu, vWall};
+            if (xsphEpsilon > 0)
+              return loop(PressureViscosityRow<D, K, true, true>{P, k, prologue.pOverRho2, 0, 0, m, visc.nu}, wallRow);
+            return loop(PressureViscosityRow<D, K, false, true>{P, k, prologue.pOverRho2, 0, 0, m, visc.nu}, wallRow);
           }
         }
         return loop(PairByPair{}, PairByPair{});
