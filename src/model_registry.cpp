@@ -29,6 +29,7 @@ Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>>
   spec.noSlip = noSlipWalls(c);
   spec.spacing = c.spacing;
   spec.clampNegative = clampNegativePressure(c);
+  spec.wallsOutsideDensity = c.walls && (spec.boundary.particles == WallLattice::kNone || !spec.boundary.sums.inSums);
   spec.reinit = methodRow(densityReinitMethods(), "density_reinit", c.densityReinit).make(c);
   spec.reinitEvery = c.densityReinitEvery;
   spec.cspm = methodRow(gradientCorrectionMethods(), "gradient_correction", c.gradientCorrection).make(c);

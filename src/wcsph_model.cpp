@@ -60,10 +60,17 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
                            true, false, std::nullopt, s.terms};
   if (continuity && s.diffusion.delta > 0) {
     // Clamped pressures (negative_pressure = clamp, or an EOS that clamps):
-    // the diffusion reads the density the pressure reads.
-    const bool clamped = s.clampNegative || std::visit([](const auto& e) {
+    // the diffusion reads the density the pressure reads, max(rho, rho_c),
+    // where every wall the fluid meets is in its density sums (dummy and
+    // dynamic wall particles, or no walls). Against reflecting walls or
+    // repulsive wall particles a fluid particle at the wall sums a truncated
+    // kernel, its continuity density drifts down there, and the diffusion
+    // towards its neighbours is what holds it: floored, the dam break's
+    // density went below zero at 0.05 s (repulsive) and 0.41 s (reflecting;
+    // 0.84 s without the floor). docs/methods/boundaries.md.
+    const bool clamped = !s.wallsOutsideDensity && (s.clampNegative || std::visit([](const auto& e) {
                            return std::is_same_v<std::decay_t<decltype(e)>, ClampedLinearEos>;
-                         }, s.eos);
+                         }, s.eos));
     const Real zeroPressure = clamped ? std::visit([](const auto& e) { return e.density(0); }, s.eos)
                                       : -std::numeric_limits<Real>::infinity();
     forces.diffusion = DensityDiffusion<D>::build(s.diffusion, h, c0, s.restDensity, g, zeroPressure);

@@ -329,7 +329,7 @@ inline const std::vector<Method<bool>>& gradientCorrectionMethods() {
 inline const std::vector<Method<bool>>& negativePressureMethods() {
   static const std::vector<Method<bool>> m = {
       {"none", "negative pressures are kept", {}, [](const CaseConfig&) { return false; }},
-      {"clamp", "p = max(0, p) after the EOS; the density diffusion reads max(rho, rho at p = 0)", {},
+      {"clamp", "p = max(0, p) after the EOS; the density diffusion reads max(rho, rho at p = 0) (with dummy or dynamic walls, or none)", {},
        [](const CaseConfig&) { return true; }},
   };
   return m;
