@@ -29,7 +29,10 @@ Model<D> makeModel(const ResolvedCase& c, std::optional<SinusoidalWallMotion<D>>
   spec.noSlip = noSlipWalls(c);
   spec.spacing = c.spacing;
   spec.clampNegative = clampNegativePressure(c);
-  spec.wallsOutsideDensity = c.walls && (spec.boundary.particles == WallLattice::kNone || !spec.boundary.sums.inSums);
+  // (Reflecting walls on a box periodic along every axis meet no fluid.)
+  const bool wallsMet = c.walls && periodicAxes(c) != (1u << c.dimension) - 1u;
+  spec.wallsOutsideDensity =
+      wallsMet && (spec.boundary.particles == WallLattice::kNone || !spec.boundary.sums.inSums);
   spec.reinit = methodRow(densityReinitMethods(), "density_reinit", c.densityReinit).make(c);
   spec.reinitEvery = c.densityReinitEvery;
   spec.cspm = methodRow(gradientCorrectionMethods(), "gradient_correction", c.gradientCorrection).make(c);

@@ -61,9 +61,9 @@ Model<D> makeWcsph(const WcsphSpec<D>& s) {
   if (continuity && s.diffusion.delta > 0) {
     // Clamped pressures (negative_pressure = clamp, or an EOS that clamps):
     // the diffusion reads the density the pressure reads, max(rho, rho_c),
-    // where every wall the fluid meets is in its density sums (dummy and
-    // dynamic wall particles, or no walls). Against reflecting walls or
-    // repulsive wall particles a fluid particle at the wall sums a truncated
+    // where the walls fill the support of the fluid next to them (dummy and
+    // dynamic wall particles, or no walls). Against reflecting walls or a
+    // repulsive layer a fluid particle at the wall sums a truncated
     // kernel, its continuity density drifts down there, and the diffusion
     // towards its neighbours is what holds it: floored, the dam break's
     // density went below zero at 0.05 s (repulsive) and 0.41 s (reflecting;

@@ -116,8 +116,8 @@ class RegimeCheck {
                     "rarefied: a fluid particle's density is %.3g kg/m^3, not positive, so its volume m/rho is "
                     "meaningless (c dt / h = %.3g; with continuity density, a splash particle's density drifts "
                     "from what its packing gives, and at a wall it can fall below zero: with negative pressures "
-                    "kept, or at reflecting or repulsive walls, which the density sums leave out; against wall "
-                    "particles in the sums, clamped, the diffusion leaves densities below rho0 alone: "
+                    "kept, or at reflecting or repulsive walls, whose particles do not fill the support; against "
+                    "dummy or dynamic walls, clamped, the diffusion leaves densities below rho0 alone: "
                     "docs/methods/boundaries.md)",
                     s.densityMin, cRef_ * dt / h);
       v.stop = text;

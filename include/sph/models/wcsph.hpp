@@ -52,9 +52,10 @@ struct WcsphSpec {
   bool noSlip = true;          // dummy/dynamic walls in the viscous term
   Real spacing = 0;            // fluid spacing dx (repulsive walls)
   bool clampNegative = false;  // negative_pressure = clamp
-  // Walls the fluid meets that its density sums leave out (reflecting walls,
-  // repulsive wall particles): the diffusion keeps no floor under clamped
-  // pressures (src/wcsph_model.cpp).
+  // Walls that do not fill the support of the fluid next to them
+  // (reflecting walls: no particles; repulsive: one layer, no support behind
+  // it): the diffusion keeps no floor under clamped pressures
+  // (src/wcsph_model.cpp).
   bool wallsOutsideDensity = false;
   DensityReinit reinit = DensityReinit::kNone;
   long reinitEvery = 20;       // steps between re-initialisations

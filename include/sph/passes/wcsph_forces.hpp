@@ -27,8 +27,8 @@
 // epilogue; an inactive one is one predictable branch, not an instantiation.
 // The water physics (Wendland C2, symmetric pressure and Monaghan's
 // viscosity, the density rate computed apart, XSPH or not, nothing else in
-// the pack), and the laminar one (the same with Morris' viscosity), take
-// their pairs, fluid and wall, in SIMD blocks on a build for AVX2 or
+// the pack), and the same with Morris', the Laplacian or no viscosity,
+// take their pairs, fluid and wall, in SIMD blocks on a build for AVX2 or
 // AVX-512 (force_blocks.hpp: the same accelerations up to the order of the
 // sum).
 #pragma once
@@ -54,6 +54,7 @@
 
 #include <optional>
 #include <tuple>
+#include <type_traits>
 #include <variant>
 
 namespace sph {
@@ -161,9 +162,8 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   DensityDiffusion<D> diffusionHere = diffusion;
   if (!rateHere) diffusionHere.coefficient = 0;
   const bool blocks = kPairBlocksPay && pairBlocksAllowed() && !rateHere && !cspm && !shifting.on &&
-                     !anyPairTermActive(terms) && std::holds_alternative<WendlandC2<D>>(kernel) &&
-                     (std::holds_alternative<MonaghanViscosityChoice>(viscosity) ||
-                      std::holds_alternative<MorrisViscosityChoice>(viscosity));  // (the rows' physics, below)
+                     !anyPairTermActive(terms) &&
+                     std::holds_alternative<WendlandC2<D>>(kernel);  // (the rows' physics, below: any viscosity)
   const ParticlePrologue<D> prologue = pairArrays(P, true, diffusionHere.active(), blocks);
   diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(
@@ -207,18 +207,33 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
             return loop(PressureViscosityRow<D, K>{P, k, prologue.pOverRho2, visc.alpha, visc.beta, m}, wallRow);
           }
         }
-        // The laminar physics (Morris): a wall neighbour shows the fluid its
-        // vWall (nu of the walls' own evaluator: 0 with free slip).
+        // The laminar viscosities: a wall neighbour shows the fluid its
+        // vWall (the coefficient of the walls' own evaluator: 0 with free
+        // slip). No viscosity is the Laplacian one switched off.
         if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>> &&
-                      std::is_same_v<V, MorrisViscosityChoice>) {
+                      (std::is_same_v<V, MorrisViscosityChoice> || std::is_same_v<V, SwitchedLaplacianChoice>)) {
           const Real* m = realMasses(P, prologue);
           if (blocks && prologue.pOverRho2 && m) {
-            const Real wallNu = std::get<0>(viscosityPack<K, true>(k, visc, wallViscosity)).nu;
-            const Real* vWall = P.vWall.empty() ? nullptr : P.vWall.front().data();
-            const PressureViscosityRow<D, K, false, true> wallRow{P, k, prologue.pOverRho2, 0, 0, m, wallNu, vWall};
-            if (xsphEpsilon > 0)
-              return loop(PressureViscosityRow<D, K, true, true>{P, k, prologue.pOverRho2, 0, 0, m, visc.nu}, wallRow);
-            return loop(PressureViscosityRow<D, K, false, true>{P, k, prologue.pOverRho2, 0, 0, m, visc.nu}, wallRow);
+            constexpr bool kMorris = std::is_same_v<V, MorrisViscosityChoice>;
+            auto laminarLoop = [&](auto kind, Real fluidCoefficient, Real wallCoefficient) {
+              constexpr RowViscosity kV = decltype(kind)::value;
+              const Real* vWall = P.vWall.empty() ? nullptr : P.vWall.front().data();
+              const PressureViscosityRow<D, K, false, kV> wallRow{P, k, prologue.pOverRho2, 0, 0, m, wallCoefficient,
+                                                                  vWall};
+              if (xsphEpsilon > 0)
+                return loop(PressureViscosityRow<D, K, true, kV>{P, k, prologue.pOverRho2, 0, 0, m, fluidCoefficient},
+                            wallRow);
+              return loop(PressureViscosityRow<D, K, false, kV>{P, k, prologue.pOverRho2, 0, 0, m, fluidCoefficient},
+                          wallRow);
+            };
+            const auto wallVisc = std::get<0>(viscosityPack<K, true>(k, visc, wallViscosity));
+            if constexpr (kMorris)
+              return laminarLoop(std::integral_constant<RowViscosity, RowViscosity::kMorris>{}, visc.nu, wallVisc.nu);
+            else if (visc.on)
+              return laminarLoop(std::integral_constant<RowViscosity, RowViscosity::kLaplacian>{}, visc.laplacian.mu,
+                                 wallVisc.mu);
+            else
+              return laminarLoop(std::integral_constant<RowViscosity, RowViscosity::kNone>{}, 0, 0);
           }
         }
         return loop(PairByPair{}, PairByPair{});

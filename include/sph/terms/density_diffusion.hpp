@@ -21,9 +21,9 @@
 // carry no pressure, and diffusing them drew a particle's density away from
 // what its packing gives, by up to 400 kg/m^3 in the obstacle dam break
 // (docs/methods/boundaries.md, "What a splash does to a particle's
-// density"). Unclamped, or against reflecting or repulsive walls (which
-// the fluid's density sums leave out: src/wcsph_model.cpp), rho_c = -inf
-// and the form is the one above.
+// density"). Unclamped, or against reflecting or repulsive walls (which do
+// not fill the support of the fluid next to them: src/wcsph_model.cpp),
+// rho_c = -inf and the form is the one above.
 //
 // The case chooses the form by name (diffusion key, methods.hpp) as a
 // DensityDiffusionChoice; build() derives the term's constants from it.
