@@ -2,7 +2,7 @@
 // particle's fluid neighbours, and with kXsph = false its wall neighbours)
 // for the water physics and the laminar one, 2D and 3D: Wendland C2, the
 // symmetric pressure term and a viscosity (RowViscosity: Monaghan's
-// artificial one, Morris' or the Laplacian one, or none), with the density
+// artificial one, Morris' or the Laplacian one), with the density
 // rate computed apart (leap-frog, symplectic Euler or summation density),
 // and optionally XSPH:
 //
@@ -37,9 +37,9 @@
 namespace sph {
 
 // The viscosity of a row.
-enum class RowViscosity { kMonaghan, kMorris, kLaplacian, kNone };
+enum class RowViscosity { kMonaghan, kMorris, kLaplacian };
 
-// What a row without Monaghan's viscosity reads in place of the sound speeds: nothing.
+// What a laminar row reads in place of the sound speeds: nothing.
 struct NoSoundSpeeds {
   [[gnu::always_inline]] NoSoundSpeeds(const Narrow*, const std::int64_t (&)[kPairBlock]) {}
 };
@@ -99,8 +99,6 @@ struct PressureViscosityRow {
           // f (v_j - v_i) is exactly -(f v_ij).)
           const Real f = n * m[j] / (rhoi * rho[j]) * (-2 * q.w);
           for (int d = 0; d < D; ++d) sa[d][l] += counts ? sp * q.g[d] - f * vij[d] : 0.0;
-        } else if constexpr (kViscosity == RowViscosity::kNone) {
-          for (int d = 0; d < D; ++d) sa[d][l] += counts ? sp * q.g[d] : 0.0;
         } else {
           const Real vr = laneDot<D>(vij, q.rij);
           const Real mu = h * vr / (q.r * q.r + eps * h * h);
