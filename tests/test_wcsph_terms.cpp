@@ -408,8 +408,7 @@ BOOST_AUTO_TEST_CASE(summation_density_blocks_match_the_scalar_loop) {
 // sum) and free slip (the wall rows without viscosity), each with
 // Monaghan's viscosity, and leap-frog with Morris' (nu = 1e-4 m^2/s: dummy
 // walls no-slip and free-slip, dynamic walls), the Laplacian one (mu = 0.1
-// Pa s) and none (with XSPH: its force walk stays scalar, so the runs
-// are the same bits); every walk takes
+// Pa s) and none (with XSPH: its force walk stays scalar); every walk takes
 // the wall neighbours in blocks too. The two runs add each sum in another
 // order, so they part by
 // round-off, which the flow then carries: every particle's x within
@@ -433,7 +432,7 @@ void checkRunsWithBlocks() {
         Variant{"dummy", "leap_frog", 0.5}, Variant{"dummy", "leap_frog", 0, "free_slip"},
         Variant{"dummy", "leap_frog", 0, "no_slip", "morris"}, Variant{"dynamic", "leap_frog", 0, "no_slip", "morris"},
         Variant{"dummy", "leap_frog", 0, "free_slip", "morris"}, Variant{"dummy", "leap_frog", 0, "no_slip", "laplacian"},
-        Variant{"dummy", "leap_frog", 0.5, "no_slip", "none"}}) {  // (none: scalar, the same bits)
+        Variant{"dummy", "leap_frog", 0.5, "no_slip", "none"}}) {  // (none: a scalar force walk)
     CaseConfig c = test::waterColumn(variant.boundary, 0.2, D);
     c.integrator = variant.integrator, c.xsph = variant.xsph, c.wallSlip = variant.slip;
     c.viscosity = variant.viscosity, c.nu = 1e-4, c.mu = 0.1;  // (mu = rho0 nu)
@@ -463,11 +462,14 @@ void checkRunsWithBlocks() {
     BOOST_TEST(dx <= 1e-9);
     BOOST_TEST(dv <= 1e-9);
     BOOST_TEST(drho <= 1e-9);
-    // Where the blocks pay, the force walk took them (its sums in another
-    // order part the runs in their last bits); RK4's stays scalar.
-    const bool scalar = std::string(variant.integrator) == "rk4" || std::string(variant.viscosity) == "none";
-    if (kPairBlocksPay && !scalar) BOOST_TEST(dx + dv + drho > 0);
-    if (scalar) BOOST_TEST(dx + dv + drho == 0);
+    // Where the blocks pay, leap-frog's walks took them: their sums in
+    // another order part the runs in their last bits. RK4's one walk stays
+    // scalar, the same bits. (The inviscid run's force walk stays scalar
+    // and only its density-rate walk takes blocks, whose last bits a
+    // mixed build's float density rate may round away: no assertion.)
+    const bool rk4 = std::string(variant.integrator) == "rk4";
+    if (kPairBlocksPay && !rk4 && std::string(variant.viscosity) != "none") BOOST_TEST(dx + dv + drho > 0);
+    if (rk4) BOOST_TEST(dx + dv + drho == 0);
     BOOST_TEST(a.v[0].norm() > 0);  // the column moved
   }
 }
