@@ -258,7 +258,8 @@ BOOST_AUTO_TEST_CASE(tait_by_multiplication_equals_pow_and_every_eos_inverts) {
 // density-rate pass's packs), on a dam-break column after 60 steps (the
 // particles disordered, the list's skin holding pairs beyond the support,
 // rows of every length), with dummy walls (walls in the sums) and dynamic
-// walls (their own rates), with each diffusion form and none. Tolerance:
+// walls (their own rates), with each diffusion form and none, with
+// Wendland C2 and the cubic spline. Tolerance:
 // the blocks add the same terms in another order, so each rate is within
 // 4 n eps sum_j |t_j| of the scalar loop's (reordered_sum_bound.hpp; the
 // largest difference is printed against it). The wall neighbours take the
@@ -267,13 +268,14 @@ BOOST_AUTO_TEST_CASE(tait_by_multiplication_equals_pow_and_every_eos_inverts) {
 // block's first pair), would be off by a whole term. (A pair beyond the support adds an
 // exact 0 either way: the kernel's gradient is 0 there.) (The pass uses the blocks only where they pay, with AVX2 or
 // AVX-512; the function is compared here on every build.)
-template <int D>
-void checkDensityRateBlocks() {
+template <int D, class K>
+void checkDensityRateBlocks(const char* kernelName) {
   for (const char* boundary : {"dummy", "dynamic"}) {
-    const CaseConfig c = test::waterColumn(boundary, 0.3, D);
+    CaseConfig c = test::waterColumn(boundary, 0.3, D);
+    c.kernel = kernelName;
     const Scene<D> s = test::settled<D>(c, 60);
     const Particles<D>& P = s.particles();
-    const WendlandC2<D> kernel(c.h);
+    const K kernel(c.h);
     const WallSums walls{true, std::string(boundary) == "dynamic"};
     for (int form = 0; form < 4; ++form) {  // none, Molteni, Fourtakas, Fourtakas with pressures clamped at rho0
       DensityDiffusionChoice choice;
@@ -308,8 +310,8 @@ void checkDensityRateBlocks() {
       };
       // The wall neighbours in blocks too: continuity alone, as the pass.
       const Real* m = realMasses(blocks, prologue);
-      loop(blocks, fluidPairs, wallPairs, wallOwn, DensityRateRow<D, WendlandC2<D>>{blocks, kernel, here, m},
-           DensityRateRow<D, WendlandC2<D>, false>{blocks, kernel, here, m});
+      loop(blocks, fluidPairs, wallPairs, wallOwn, DensityRateRow<D, K>{blocks, kernel, here, m},
+           DensityRateRow<D, K, false>{blocks, kernel, here, m});
       loop(scalar, fluidPairs, wallPairs, wallOwn, PairByPair{}, PairByPair{});
       loop(magnitude, test::magnitudesOf(fluidPairs), test::magnitudesOf(wallPairs), test::magnitudesOf(wallOwn),
            PairByPair{}, PairByPair{});
@@ -325,10 +327,10 @@ void checkDensityRateBlocks() {
         differ += blocks.drho[i] != scalar.drho[i];
         moving += std::abs(scalar.drho[i]) > 1;
       }
-      BOOST_TEST_MESSAGE(D << "D, " << boundary << ", diffusion form " << form << ": " << differ << " of " << n
+      BOOST_TEST_MESSAGE(D << "D, " << kernelName << ", " << boundary << ", diffusion form " << form << ": " << differ << " of " << n
                                   << " rates differ in their last bits, the largest difference " << worst
                                   << " of its bound");
-      BOOST_TEST_INFO(D << "D, " << boundary << ", diffusion form " << form);
+      BOOST_TEST_INFO(D << "D, " << kernelName << ", " << boundary << ", diffusion form " << form);
       BOOST_TEST(beyond == 0u);
       BOOST_TEST(moving > P.fluidCount() / 4);  // the rates are not trivially zero
     }
@@ -336,8 +338,10 @@ void checkDensityRateBlocks() {
 }
 
 BOOST_AUTO_TEST_CASE(density_rate_blocks_match_the_scalar_loop) {
-  checkDensityRateBlocks<2>();
-  checkDensityRateBlocks<3>();
+  checkDensityRateBlocks<2, WendlandC2<2>>("wendland_c2");
+  checkDensityRateBlocks<3, WendlandC2<3>>("wendland_c2");
+  checkDensityRateBlocks<2, CubicSpline<2>>("cubic_spline");
+  checkDensityRateBlocks<3, CubicSpline<3>>("cubic_spline");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

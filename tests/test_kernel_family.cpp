@@ -346,6 +346,25 @@ BOOST_AUTO_TEST_CASE_TEMPLATE(dWdr_over_r_is_dWdr_divided_by_r, K, AllKernels) {
   BOOST_TEST(k.dWdr_r(0) == k.dWdr(tiny) / tiny, boost::test_tools::tolerance(1e-8));
 }
 
+// The SIMD rows' lane forms (pair_loop_blocks.hpp: both parts of the cubic
+// spline formed and one selected) give W's and dWdr_r's values, bit for
+// bit: at r = 0, across the support (both sides of q = 1 included), at it
+// and beyond. A lane form with another order of operations, or one that
+// took the wrong part near q = 1, differs.
+using RowKernels = std::tuple<sph::CubicSpline<2>, sph::CubicSpline<3>, sph::WendlandC2<2>, sph::WendlandC2<3>>;
+BOOST_AUTO_TEST_CASE_TEMPLATE(lane_forms_are_W_and_dWdr_r_bit_for_bit, K, RowKernels) {
+  const Real h = 0.013;
+  const K k(h);
+  std::vector<Real> radii{0, h, std::nextafter(h, 0.0), std::nextafter(h, 1.0), k.support(),
+                          std::nextafter(k.support(), 0.0), 3 * h};
+  for (int s = 1; s < 1000; ++s) radii.push_back(k.support() * s / 997.0);
+  for (const Real r : radii) {
+    BOOST_TEST_INFO(K::name << " D=" << K::dim << " r/h=" << r / h);
+    BOOST_TEST(k.laneW(r) == k.W(r));
+    BOOST_TEST(k.laneDWdr_r(r) == k.dWdr_r(r));
+  }
+}
+
 // laplacianW against the Cartesian 2D+1-point finite-difference Laplacian of
 // L = W (viscosityW for Mueller), e = 1e-4 h, at radii where it is the true,
 // smooth Laplacian (see kLaplacianFractions). Error: truncation e^2/12 |L''''|

@@ -201,7 +201,10 @@ BOOST_AUTO_TEST_CASE(adaptive_time_step_names_its_criterion) {
 // within the viscous limit 0.125 h^2 / nu = 2.8e-4 s of dt = 1e-4 s), with
 // the Laplacian one (mu = rho0 nu) (each column settled with
 // its own viscosity, so that the dummy walls' vWall is the one
-// Adami's extrapolation gave), with XSPH off and on, in 2D and 3D.
+// Adami's extrapolation gave), with XSPH off and on, in 2D and 3D, with
+// Wendland C2 and the cubic spline (whose lanes form both parts of the
+// spline and select one: a lane that took the wrong part would be off by
+// a whole term).
 // Tolerance: the blocks add the same terms in
 // another order, so each component is within 4 n eps sum_j |t_j| of the
 // scalar loop's (reordered_sum_bound.hpp; the largest difference is printed
@@ -213,8 +216,8 @@ BOOST_AUTO_TEST_CASE(adaptive_time_step_names_its_criterion) {
 // (A pair beyond the support adds an exact 0 either way: the kernel and its
 // gradient are 0 there.) (The pass uses the blocks only where they pay, with
 // AVX2 or AVX-512; the function is compared here on every build.)
-template <int D>
-void checkForceBlocks() {
+template <int D, class K>
+void checkForceBlocks(const char* kernelName) {
   struct StoreRates {
     std::vector<Vec<D>>* xsph;
     void operator()(std::size_t i, Particles<D>& P, const PairRates<D>& r) const {
@@ -225,7 +228,6 @@ void checkForceBlocks() {
   struct NoRates {
     void operator()(std::size_t, Particles<D>&, const PairRates<D>&) const {}
   };
-  using K = WendlandC2<D>;
   const Real nu = 1e-4;
   // One comparison: `viscosity` and `wallViscosity` the scalar evaluators,
   // row(xsph, wall, prologue, m, Q) the blocks' row of particles Q.
@@ -298,11 +300,12 @@ void checkForceBlocks() {
     }
   };
   for (const char* boundary : {"dummy", "dynamic"}) {
-    const CaseConfig c = test::waterColumn(boundary, 0.3, D);
+    CaseConfig c = test::waterColumn(boundary, 0.3, D);
+    c.kernel = kernelName;
     const Scene<D> s = test::settled<D>(c, 60);
     const K kernel(c.h);
     for (const Real beta : {0.0, 1.0})
-      check(std::string(boundary) + ", monaghan, beta " + std::to_string(beta), s, c,
+      check(std::string(kernelName) + ", " + boundary + ", monaghan, beta " + std::to_string(beta), s, c,
             MonaghanViscosity<K>{kernel, 0.02, beta}, MonaghanViscosity<K, true>{kernel, 0.02, beta},
             [&](auto xsph, auto, const ParticlePrologue<D>& prologue, const Real* m, const Particles<D>& Q) {
               return PressureViscosityRow<D, K, decltype(xsph)::value>{Q, kernel, prologue.pOverRho2, 0.02, beta, m};
@@ -322,7 +325,7 @@ void checkForceBlocks() {
       CaseConfig v = c;
       v.viscosity = viscosity, v.nu = nu, v.mu = mu;
       const Scene<D> settledWith = test::settled<D>(v, 60);
-      check(std::string(boundary) + ", " + viscosity, settledWith, v, fluid, wall, laminarRow(kind, coefficient));
+      check(std::string(kernelName) + ", " + boundary + ", " + viscosity, settledWith, v, fluid, wall, laminarRow(kind, coefficient));
     };
     laminar("morris", nu, MorrisViscosity<K>{kernel, nu}, MorrisViscosity<K, true>{kernel, nu},
             std::integral_constant<RowViscosity, RowViscosity::kMorris>{});
@@ -332,8 +335,10 @@ void checkForceBlocks() {
 }
 
 BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
-  checkForceBlocks<2>();
-  checkForceBlocks<3>();
+  checkForceBlocks<2, WendlandC2<2>>("wendland_c2");
+  checkForceBlocks<3, WendlandC2<3>>("wendland_c2");
+  checkForceBlocks<2, CubicSpline<2>>("cubic_spline");
+  checkForceBlocks<3, CubicSpline<3>>("cubic_spline");
 }
 
 // The summation density's blocks (passes/summation_density_blocks.hpp)
@@ -408,7 +413,9 @@ BOOST_AUTO_TEST_CASE(summation_density_blocks_match_the_scalar_loop) {
 // sum) and free slip (the wall rows without viscosity), each with
 // Monaghan's viscosity, and leap-frog with Morris' (nu = 1e-4 m^2/s: dummy
 // walls no-slip and free-slip, dynamic walls), the Laplacian one (mu = 0.1
-// Pa s) and none (with XSPH: its force walk stays scalar); every walk takes
+// Pa s) and none (with XSPH: its force walk stays scalar), and with the
+// cubic spline, Monaghan's viscosity with XSPH (dummy walls) and the
+// Laplacian one (dynamic walls); every walk takes
 // the wall neighbours in blocks too. The two runs add each sum in another
 // order, so they part by
 // round-off, which the flow then carries: every particle's x within
@@ -426,16 +433,20 @@ void checkRunsWithBlocks() {
     Real xsph;
     const char* slip = "no_slip";
     const char* viscosity = "monaghan";  // morris: nu = 1e-4 m^2/s; laplacian: mu = 0.1 Pa s
+    const char* kernel = "wendland_c2";
   };
   for (const Variant& variant :
        {Variant{"dummy", "leap_frog", 0}, Variant{"dynamic", "leap_frog", 0}, Variant{"dummy", "rk4", 0},
         Variant{"dummy", "leap_frog", 0.5}, Variant{"dummy", "leap_frog", 0, "free_slip"},
         Variant{"dummy", "leap_frog", 0, "no_slip", "morris"}, Variant{"dynamic", "leap_frog", 0, "no_slip", "morris"},
         Variant{"dummy", "leap_frog", 0, "free_slip", "morris"}, Variant{"dummy", "leap_frog", 0, "no_slip", "laplacian"},
-        Variant{"dummy", "leap_frog", 0.5, "no_slip", "none"}}) {  // (none: a scalar force walk)
+        Variant{"dummy", "leap_frog", 0.5, "no_slip", "none"},  // (none: a scalar force walk)
+        Variant{"dummy", "leap_frog", 0.5, "no_slip", "monaghan", "cubic_spline"},
+        Variant{"dynamic", "leap_frog", 0, "no_slip", "laplacian", "cubic_spline"}}) {
     CaseConfig c = test::waterColumn(variant.boundary, 0.2, D);
     c.integrator = variant.integrator, c.xsph = variant.xsph, c.wallSlip = variant.slip;
     c.viscosity = variant.viscosity, c.nu = 1e-4, c.mu = 0.1;  // (mu = rho0 nu)
+    c.kernel = variant.kernel;
     std::vector<Particles<D>> ends;
     for (const bool allowed : {true, false}) {
       pairBlocksAllowed() = allowed;
@@ -447,7 +458,7 @@ void checkRunsWithBlocks() {
     const Particles<D>& a = ends[0];
     const Particles<D>& b = ends[1];
     BOOST_TEST_INFO(D << "D, " << variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph << ", "
-                      << variant.slip << ", " << variant.viscosity);
+                      << variant.slip << ", " << variant.viscosity << ", " << variant.kernel);
     BOOST_REQUIRE(a.size() == b.size());
     Real dx = 0, dv = 0, drho = 0;
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -457,7 +468,8 @@ void checkRunsWithBlocks() {
       drho = std::max(drho, std::abs(a.rho[i] - b.rho[i]) / c.rho0);
     }
     BOOST_TEST_MESSAGE(D << "D, " << variant.boundary << ", " << variant.integrator << ", xsph " << variant.xsph
-                                        << ", " << variant.slip << ", " << variant.viscosity << ": largest |dx|/h " << dx << ", |dv|/c0 " << dv
+                                        << ", " << variant.slip << ", " << variant.viscosity << ", " << variant.kernel
+                                        << ": largest |dx|/h " << dx << ", |dv|/c0 " << dv
                                         << ", |drho|/rho0 " << drho);
     BOOST_TEST(dx <= 1e-9);
     BOOST_TEST(dv <= 1e-9);

@@ -27,6 +27,7 @@
 // loop does.
 #pragma once
 
+#include "sph/kernels/kernels.hpp"
 #include "sph/neighbour_list.hpp"
 #include "sph/pair_loop.hpp"
 #include "sph/particles.hpp"
@@ -62,6 +63,20 @@ constexpr bool kPairBlocksPay = false;
 inline bool& pairBlocksAllowed() {
   static bool allowed = true;
   return allowed;
+}
+
+// The kernels the rows take: those whose laneW and laneDWdr_r the compiler
+// forms per lane, Wendland C2 and the cubic spline (the Gaussian's exp and
+// Muller's kernels stay with the scalar loop).
+template <class K>
+inline constexpr bool kRowKernel = false;
+template <int D>
+inline constexpr bool kRowKernel<WendlandC2<D>> = true;
+template <int D>
+inline constexpr bool kRowKernel<CubicSpline<D>> = true;
+template <int D>
+bool isRowKernel(const Kernel<D>& kernel) {
+  return std::visit([](const auto& k) { return kRowKernel<std::decay_t<decltype(k)>>; }, kernel);
 }
 
 // The indices of the block of a row that starts at `block`, `filled` of
@@ -176,7 +191,8 @@ struct NarrowBlock {
 };
 
 // One lane's pair, as makePair (pair_loop.hpp) forms it: r_ij = x_i - x_j,
-// r^2, r, w = dWdr_r(r) and grad_i W = w r_ij.
+// r^2, r, w = dWdr_r(r) (the kernel's laneDWdr_r: its values) and grad_i W
+// = w r_ij.
 template <int D>
 struct LanePair {
   Real rij[D], r2, r, w, g[D];
@@ -191,7 +207,7 @@ template <int D, class Kernel>
     q.r2 += q.rij[d] * q.rij[d];
   }
   q.r = std::sqrt(q.r2);
-  q.w = k.dWdr_r(q.r);
+  q.w = k.laneDWdr_r(q.r);
   for (int d = 0; d < D; ++d) q.g[d] = q.w * q.rij[d];
   return q;
 }

@@ -72,6 +72,24 @@ struct CubicSpline : RadialGradient<CubicSpline<D>, D> {
     return dWdr(r) / r;
   }
 
+  // W and dWdr_r as the SIMD rows' lanes take them (pair_loop_blocks.hpp):
+  // both parts formed in every lane and one selected, with the operations
+  // of W and dWdr_r above, so the same values. (The branches' form would
+  // leave the lanes' loop scalar: the compiler does not form the outer
+  // part's division in a lane whose branch skips it.)
+  Real laneW(Real r) const {
+    const Real q = r * invH_;
+    const Real t = std::max(2 - q, Real(0));
+    const Real inner = sigma_ * (1 - q * q * (Real(1.5) - Real(0.75) * q)), outer = sigma_ * Real(0.25) * t * t * t;
+    return r >= support_ ? 0 : q < 1 ? inner : outer;
+  }
+  Real laneDWdr_r(Real r) const {
+    const Real q = r * invH_;
+    const Real t = std::max(2 - q, Real(0));
+    const Real inner = sigmaLap_ * (Real(2.25) * q - 3), outer = -sigmaGrad_ * Real(0.75) * t * t / r;
+    return r >= support_ ? 0 : q < 1 ? inner : outer;
+  }
+
   Real laplacianW(Real r) const {
     if (r >= support_) return 0;
     const Real q = r * invH_;

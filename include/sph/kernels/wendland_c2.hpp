@@ -65,6 +65,11 @@ struct WendlandC2 : RadialGradient<WendlandC2<D>, D> {
     return -5 * sigmaLap_ * t * t * t;
   }
 
+  // As the SIMD rows' lanes take them (pair_loop_blocks.hpp): W and dWdr_r
+  // themselves, whose one branch the compiler forms per lane.
+  Real laneW(Real r) const { return W(r); }
+  Real laneDWdr_r(Real r) const { return dWdr_r(r); }
+
   Real laplacianW(Real r) const {
     if (r >= support_) return 0;
     const Real q = r * invH_;

@@ -11,7 +11,8 @@
 // (continuity_density.hpp), so no correction is formed here. One pair loop
 // per kernel. The optional terms that write the density rate only
 // (terms/optional_terms.hpp) follow the diffusion, in their list order.
-// With Wendland C2 and no such term, on a build for AVX2 or AVX-512,
+// With Wendland C2 or the cubic spline and no such term, on a build for
+// AVX2 or AVX-512,
 // the fluid particles' pairs, fluid and wall, go in SIMD blocks instead
 // (density_rate_blocks.hpp: the same rates up to the order of the sum).
 #pragma once
@@ -54,7 +55,7 @@ struct DensityRatePass {
 template <int D>
 unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbours, const StepContext&) const {
   const bool blocks = kPairBlocksPay && pairBlocksAllowed() && !anyRateTermActive(terms) &&
-                     std::holds_alternative<WendlandC2<D>>(kernel);  // (the rows' kernel, below)
+                     isRowKernel(kernel);  // (the rows' kernels, below)
   const ParticlePrologue<D> prologue = pairArrays(P, false, diffusion.active(), blocks);
   DensityDiffusion<D> diffusionHere = diffusion;
   diffusionHere.volume = prologue.volume;
@@ -70,7 +71,7 @@ unsigned DensityRatePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighb
                              fluidRow, wallRow);
         };
         using K = std::decay_t<decltype(k)>;
-        if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>>) {
+        if constexpr (kPairBlocksPay && kRowKernel<K>) {
           const Real* m = realMasses(P, prologue);
           if (blocks && m && (diffusionHere.coefficient == 0 || diffusionHere.volume)) {
             // The wall neighbours: continuity alone (the diffusion is

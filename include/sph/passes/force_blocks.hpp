@@ -1,6 +1,7 @@
 // The force pass's pairs in SIMD blocks (pair_loop_blocks.hpp; a fluid
 // particle's fluid neighbours, and with kXsph = false its wall neighbours)
-// for the water physics and the laminar one, 2D and 3D: Wendland C2, the
+// for the water physics and the laminar one, 2D and 3D: Wendland C2 or the
+// cubic spline (the kernel's laneW and laneDWdr_r), the
 // symmetric pressure term and a viscosity (RowViscosity: Monaghan's
 // artificial one, Morris' or the Laplacian one), with the density
 // rate computed apart (leap-frog, symplectic Euler or summation density),
@@ -110,7 +111,7 @@ struct PressureViscosityRow {
           for (int d = 0; d < D; ++d) sa[d][l] += counts ? s * q.g[d] : 0.0;  // (not 0 x a NaN of a skipped pair)
         }
         if constexpr (kXsph) {
-          const Real f = 2 * m[j] / (rhoi + rho[j]) * k.W(q.r);  // (Xsph::add's factor, in its order)
+          const Real f = 2 * m[j] / (rhoi + rho[j]) * k.laneW(q.r);  // (Xsph::add's factor, in its order)
           for (int d = 0; d < D; ++d) sx[d][l] += counts ? f * (vj(d, l) - vi[d]) : 0.0;
         }
       }

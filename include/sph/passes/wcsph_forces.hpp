@@ -25,8 +25,8 @@
 // damping, ...) come from their list: the pair terms' evaluators after the
 // pressure term in the fluid-fluid pack, the per-particle terms in the
 // epilogue; an inactive one is one predictable branch, not an instantiation.
-// The water physics (Wendland C2, symmetric pressure and Monaghan's
-// viscosity, the density rate computed apart, XSPH or not, nothing else in
+// The water physics (Wendland C2 or the cubic spline, symmetric pressure
+// and Monaghan's viscosity, the density rate computed apart, XSPH or not, nothing else in
 // the pack), and the same with Morris' or the Laplacian viscosity, take
 // their pairs, fluid and wall, in SIMD blocks on a build for AVX2 or
 // AVX-512 (force_blocks.hpp: the same accelerations up to the order of the
@@ -162,7 +162,7 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   DensityDiffusion<D> diffusionHere = diffusion;
   if (!rateHere) diffusionHere.coefficient = 0;
   const bool blocks = kPairBlocksPay && pairBlocksAllowed() && !rateHere && !cspm && !shifting.on &&
-                     !anyPairTermActive(terms) && std::holds_alternative<WendlandC2<D>>(kernel) &&
+                     !anyPairTermActive(terms) && isRowKernel(kernel) &&
                      // (the rows' physics, below.) Without viscosity the walk stays scalar: in
                      // blocks a restart from a snapshot (--particle_file) parted from the
                      // uninterrupted run by 1e-17 m/s (tests/test_restart.cpp), not looked into.
@@ -197,7 +197,7 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         // The wall neighbours take the row without XSPH (fluid pairs only),
         // with the walls' viscosity: wallNeighbourPairs' terms.
         using V = std::decay_t<decltype(visc)>;
-        if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>> &&
+        if constexpr (kPairBlocksPay && kRowKernel<K> &&
                       std::is_same_v<V, MonaghanViscosityChoice>) {
           const Real* m = realMasses(P, prologue);
           if (blocks && prologue.pOverRho2 && m) {
@@ -214,7 +214,7 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         // vWall (the coefficient of the walls' own evaluator: 0 with free
         // slip). (No viscosity, the Laplacian one switched off, is not in
         // blocks: `blocks` above.)
-        if constexpr (kPairBlocksPay && std::is_same_v<K, WendlandC2<D>> &&
+        if constexpr (kPairBlocksPay && kRowKernel<K> &&
                       (std::is_same_v<V, MorrisViscosityChoice> || std::is_same_v<V, SwitchedLaplacianChoice>)) {
           const Real* m = realMasses(P, prologue);
           if (blocks && prologue.pOverRho2 && m) {
