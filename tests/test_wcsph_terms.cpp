@@ -345,7 +345,8 @@ BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
 // against the scalar loop (terms/summation_density.hpp with the blocks
 // switched off), on the dam-break column after 60 steps (disordered, the
 // list's skin holding pairs beyond the support), with dummy walls, in the
-// sums and left out of them, in 2D and 3D. Tolerance:
+// sums and left out of them, in 2D and 3D, with Wendland C2 and the cubic
+// spline. Tolerance:
 // the same terms m_j W_ij >= 0 in another order, so each rho_i is within
 // 4 n eps rho_i of the scalar one (reordered_sum_bound.hpp, n the summed
 // neighbours and the self term). A row that dropped the self term, summed a
@@ -354,14 +355,14 @@ BOOST_AUTO_TEST_CASE(force_blocks_match_the_scalar_loop) {
 // is compared on every build; where the blocks pay, the pass's result must
 // be the row's, bit for bit (the pass takes them), elsewhere the scalar
 // loop's.
-template <int D>
-void checkSummationBlocks() {
+template <int D, class K>
+void checkSummationBlocks(const char* kernelName) {
   const char* boundary = "dummy";  // (dynamic walls need continuity density)
   CaseConfig c = test::waterColumn(boundary, 0.3, D);
-  c.density = "summation", c.delta = 0;
+  c.density = "summation", c.delta = 0, c.kernel = kernelName;
   const Scene<D> s = test::settled<D>(c, 60);
   const Particles<D>& P = s.particles();
-  const DensityKernel<WendlandC2<D>> W{WendlandC2<D>(c.h)};
+  const DensityKernel<K> W{K(c.h)};
   const TaitEos eos(c.rho0, c.c0, 7);
   std::vector<Real> withWalls;
   for (const bool wallsInSums : {true, false}) {
@@ -375,7 +376,7 @@ void checkSummationBlocks() {
     for (std::size_t i = 0; i < P.fluidCount(); ++i) {
       const typename NeighbourList<D>::Row row = s.neighbours().row(i);
       const std::uint32_t* end = wallsInSums ? row.end : row.walls;
-      const Real blocks = SummationDensityRow<D>{P, W.kernel}(static_cast<std::uint32_t>(i), row.begin, end);
+      const Real blocks = SummationDensityRow<D, K>{P, W.kernel}(static_cast<std::uint32_t>(i), row.begin, end);
       const Real bound = test::reorderedSumBound(static_cast<std::size_t>(end - row.begin) + 1, scalar.rho[i]);
       const Real difference = std::abs(blocks - scalar.rho[i]);
       beyond += !(difference <= bound);
@@ -387,10 +388,10 @@ void checkSummationBlocks() {
       if (wallsInSums) withWalls.push_back(scalar.rho[i]);
       else walled += withWalls[i] > scalar.rho[i] * (1 + 1e-3);
     }
-    BOOST_TEST_MESSAGE(D << "D, " << boundary << ", walls in the sums " << wallsInSums << ": " << differ << " of "
+    BOOST_TEST_MESSAGE(D << "D, " << kernelName << ", " << boundary << ", walls in the sums " << wallsInSums << ": " << differ << " of "
                          << P.fluidCount() << " densities differ in their last bits, the largest difference "
                          << worst << " of its bound");
-    BOOST_TEST_INFO(D << "D, " << boundary << ", walls in the sums " << wallsInSums);
+    BOOST_TEST_INFO(D << "D, " << kernelName << ", " << boundary << ", walls in the sums " << wallsInSums);
     BOOST_TEST(beyond == 0u);
     BOOST_TEST(wired == P.fluidCount());
     BOOST_TEST(plausible == P.fluidCount());
@@ -400,8 +401,10 @@ void checkSummationBlocks() {
 }
 
 BOOST_AUTO_TEST_CASE(summation_density_blocks_match_the_scalar_loop) {
-  checkSummationBlocks<2>();
-  checkSummationBlocks<3>();
+  checkSummationBlocks<2, WendlandC2<2>>("wendland_c2");
+  checkSummationBlocks<3, WendlandC2<3>>("wendland_c2");
+  checkSummationBlocks<2, CubicSpline<2>>("cubic_spline");
+  checkSummationBlocks<3, CubicSpline<3>>("cubic_spline");
 }
 
 // Whole runs with the blocks where they pay and with the scalar loop

@@ -1,5 +1,5 @@
 // The summation density's sum in SIMD blocks (pair_loop_blocks.hpp), for
-// Wendland C2 in 2D and 3D:
+// Wendland C2 and the cubic spline (the kernel's laneW) in 2D and 3D:
 //
 //   rho_i = m_i W(0) + sum_j m_j W(|x_i - x_j|)        (terms/summation_density.hpp)
 //
@@ -14,7 +14,6 @@
 // NaN, as in the scalar loop, for the state check to name.
 #pragma once
 
-#include "sph/kernels/wendland_c2.hpp"
 #include "sph/pair_loop_blocks.hpp"
 
 #include <cmath>
@@ -22,10 +21,10 @@
 
 namespace sph {
 
-template <int D>
+template <int D, class Kernel = WendlandC2<D>>
 struct SummationDensityRow {
   const Particles<D>& P;
-  WendlandC2<D> kernel;
+  Kernel kernel;
 
   // (Its own function, called once per particle: as runFluidRow.)
   [[gnu::noinline]] Real operator()(std::uint32_t i, const std::uint32_t* begin, const std::uint32_t* end) const {
@@ -33,7 +32,7 @@ struct SummationDensityRow {
     const Narrow* m = P.m.data();
     Real xi[D];
     for (int d = 0; d < D; ++d) xi[d] = x[D * i + d];
-    const WendlandC2<D> k = kernel;
+    const Kernel k = kernel;
     alignas(64) Real sum[kPairBlock] = {};
     for (const std::uint32_t* block = begin; block < end; block += kPairBlock) {
       std::int64_t index[kPairBlock];
@@ -47,7 +46,7 @@ struct SummationDensityRow {
           const Real rij = xi[d] - xj(d, l);
           r2 += rij * rij;
         }
-        const Real term = mj(l, index[l]) * k.W(std::sqrt(r2));
+        const Real term = mj(l, index[l]) * k.laneW(std::sqrt(r2));
         sum[l] += l < static_cast<int>(filled) ? term : 0.0;
       }
     }

@@ -5,8 +5,8 @@
 // Gather form: particle i writes only rho_i, p_i (and c_i), so the loop runs
 // in parallel without atomics and gives the same result for any thread
 // count (the loop: walkNeighbours, neighbour_walk.hpp). Kernel needs
-// density(r2) and densityAtZero(). Wendland C2 takes SIMD blocks where
-// they pay (passes/summation_density_blocks.hpp).
+// density(r2) and densityAtZero(). Wendland C2 and the cubic spline take
+// SIMD blocks where they pay (passes/summation_density_blocks.hpp).
 #pragma once
 
 #include "sph/neighbour_walk.hpp"
@@ -26,6 +26,12 @@ struct DensityKernel {
   Real density(Real r2) const { return kernel.W(std::sqrt(r2)); }
   Real densityAtZero() const { return kernel.W(0); }
 };
+
+// A DensityKernel whose kernel the SIMD rows take (kRowKernel).
+template <class W>
+struct IsRowDensityKernel : std::false_type {};
+template <class K>
+struct IsRowDensityKernel<DensityKernel<K>> : std::bool_constant<kRowKernel<K>> {};
 
 // rho_i by the scalar loop, in the list's order.
 template <int D, class W>
@@ -48,14 +54,15 @@ void computeSummationDensity(Particles<D>& P, const NeighbourList<D>& neighbours
   const bool blocks = kPairBlocksPay && pairBlocksAllowed();
   walkNeighbours(P, neighbours, P.range(ParticleRange::kFluid), std::tie(kernel, eos),
                  [&](std::size_t i, const NeighbourRow<D>& row, const auto& W, const auto& e) {
-                   // Wendland C2 in SIMD blocks where they pay (summation_density_blocks.hpp:
-                   // the same sum in another order).
+                   // Wendland C2 and the cubic spline in SIMD blocks where they pay
+                   // (summation_density_blocks.hpp: the same sum in another order).
                    const Real rho_i = [&] {
-                     if constexpr (std::is_same_v<std::decay_t<decltype(W)>, DensityKernel<WendlandC2<D>>>) {
+                     if constexpr (IsRowDensityKernel<std::decay_t<decltype(W)>>::value) {
                        if (blocks) {
                          const typename NeighbourList<D>::Row r = neighbours.row(i);
-                         return SummationDensityRow<D>{P, W.kernel}(static_cast<std::uint32_t>(i), r.begin,
-                                                                    wallsInSums ? r.end : r.walls);
+                         using K = decltype(W.kernel);
+                         return SummationDensityRow<D, K>{P, W.kernel}(static_cast<std::uint32_t>(i), r.begin,
+                                                                       wallsInSums ? r.end : r.walls);
                        }
                      }
                      return summedDensity(P, row, W, i, wallsInSums);
