@@ -427,7 +427,23 @@ std::optional<StateFailure> Scene<D>::initialise(bool scaleMass) {
     scaleMassToRestDensity(P_, neighbours_, model_, comm_);
     P_.refreshGhosts();
   }
-  model_.evaluate(P_, neighbours_, StepContext{step_, time_, 0});
+  // The first evaluation in the form of every step's: with an integrator
+  // that takes the density rate apart (leap-frog, symplectic Euler) and a
+  // model that has that pass, the density rate first, then the other
+  // passes without it. So a run started from a snapshot (particle_file)
+  // evaluates the forces at its first state as the run that wrote the
+  // snapshot did at that step, by the same walk (the force walk's SIMD
+  // rows take only this form: a restart of an inviscid run is bit for bit,
+  // tests/test_restart.cpp).
+  StepContext first{step_, time_, 0};
+  first.densityRateApart =
+      std::visit([](const auto& i) { return std::decay_t<decltype(i)>::kDensityRateApart; }, integrator_) &&
+      !model_.densityRatePasses().empty();
+  if (first.densityRateApart) {
+    model_.refreshCspmMatrices(P_, neighbours_);  // (the density-rate pass reads them)
+    model_.densityRate(P_, neighbours_);
+  }
+  model_.evaluate(P_, neighbours_, first);
   return finishStep([](std::size_t) {});
 }
 

@@ -3,7 +3,7 @@
 // for the water physics and the laminar one, 2D and 3D: Wendland C2 or the
 // cubic spline (the kernel's laneW and laneDWdr_r), the
 // symmetric pressure term and a viscosity (RowViscosity: Monaghan's
-// artificial one, Morris' or the Laplacian one), with the density
+// artificial one, Morris' or the Laplacian one, or none), with the density
 // rate computed apart (leap-frog, symplectic Euler or summation density),
 // and optionally XSPH:
 //
@@ -38,9 +38,9 @@
 namespace sph {
 
 // The viscosity of a row.
-enum class RowViscosity { kMonaghan, kMorris, kLaplacian };
+enum class RowViscosity { kMonaghan, kMorris, kLaplacian, kNone };
 
-// What a laminar row reads in place of the sound speeds: nothing.
+// What a row without Monaghan's viscosity reads in place of the sound speeds: nothing.
 struct NoSoundSpeeds {
   [[gnu::always_inline]] NoSoundSpeeds(const Narrow*, const std::int64_t (&)[kPairBlock]) {}
 };
@@ -100,6 +100,8 @@ struct PressureViscosityRow {
           // f (v_j - v_i) is exactly -(f v_ij).)
           const Real f = n * m[j] / (rhoi * rho[j]) * (-2 * q.w);
           for (int d = 0; d < D; ++d) sa[d][l] += counts ? sp * q.g[d] - f * vij[d] : 0.0;
+        } else if constexpr (kViscosity == RowViscosity::kNone) {
+          for (int d = 0; d < D; ++d) sa[d][l] += counts ? sp * q.g[d] : 0.0;
         } else {
           const Real vr = laneDot<D>(vij, q.rij);
           const Real mu = h * vr / (q.r * q.r + eps * h * h);

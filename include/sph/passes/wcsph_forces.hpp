@@ -27,8 +27,8 @@
 // epilogue; an inactive one is one predictable branch, not an instantiation.
 // The water physics (Wendland C2 or the cubic spline, symmetric pressure
 // and Monaghan's viscosity, the density rate computed apart, XSPH or not, nothing else in
-// the pack), and the same with Morris' or the Laplacian viscosity, take
-// their pairs, fluid and wall, in SIMD blocks on a build for AVX2 or
+// the pack), and the same with Morris', the Laplacian or no viscosity,
+// take their pairs, fluid and wall, in SIMD blocks on a build for AVX2 or
 // AVX-512 (force_blocks.hpp: the same accelerations up to the order of the
 // sum).
 #pragma once
@@ -162,11 +162,7 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
   DensityDiffusion<D> diffusionHere = diffusion;
   if (!rateHere) diffusionHere.coefficient = 0;
   const bool blocks = kPairBlocksPay && pairBlocksAllowed() && !rateHere && !cspm && !shifting.on &&
-                     !anyPairTermActive(terms) && isRowKernel(kernel) &&
-                     // (the rows' physics, below.) Without viscosity the walk stays scalar: in
-                     // blocks a restart from a snapshot (--particle_file) parted from the
-                     // uninterrupted run by 1e-17 m/s (tests/test_restart.cpp), not looked into.
-                     !std::holds_alternative<NoViscosity>(viscosity);
+                     !anyPairTermActive(terms) && isRowKernel(kernel);  // (the rows' physics, below)
   const ParticlePrologue<D> prologue = pairArrays(P, true, diffusionHere.active(), blocks);
   diffusionHere.volume = prologue.volume;
   const unsigned bits = std::visit(
@@ -212,8 +208,8 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
         }
         // The laminar viscosities: a wall neighbour shows the fluid its
         // vWall (the coefficient of the walls' own evaluator: 0 with free
-        // slip). (No viscosity, the Laplacian one switched off, is not in
-        // blocks: `blocks` above.)
+        // slip). No viscosity is the Laplacian one switched off: the row
+        // without a viscous term.
         if constexpr (kPairBlocksPay && kRowKernel<K> &&
                       (std::is_same_v<V, MorrisViscosityChoice> || std::is_same_v<V, SwitchedLaplacianChoice>)) {
           const Real* m = realMasses(P, prologue);
@@ -233,9 +229,11 @@ unsigned WcsphForcePass<D>::run(Particles<D>& P, const NeighbourList<D>& neighbo
             const auto wallVisc = std::get<0>(viscosityPack<K, true>(k, visc, wallViscosity));
             if constexpr (kMorris)
               return laminarLoop(std::integral_constant<RowViscosity, RowViscosity::kMorris>{}, visc.nu, wallVisc.nu);
-            else
+            else if (visc.on)
               return laminarLoop(std::integral_constant<RowViscosity, RowViscosity::kLaplacian>{}, visc.laplacian.mu,
                                  wallVisc.mu);
+            else
+              return laminarLoop(std::integral_constant<RowViscosity, RowViscosity::kNone>{}, 0, 0);
           }
         }
         return loop(PairByPair{}, PairByPair{});
