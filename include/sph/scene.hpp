@@ -433,16 +433,13 @@ std::optional<StateFailure> Scene<D>::initialise(bool scaleMass) {
   // passes without it. So a run started from a snapshot (particle_file)
   // evaluates the forces at its first state as the run that wrote the
   // snapshot did at that step, by the same walk (the force walk's SIMD
-  // rows take only this form: a restart of an inviscid run is bit for bit,
-  // tests/test_restart.cpp).
+  // rows take only this form: a restart of an inviscid run without XSPH
+  // and with neighbour_skin = 0 is bit for bit, tests/test_restart.cpp).
   StepContext first{step_, time_, 0};
   first.densityRateApart =
       std::visit([](const auto& i) { return std::decay_t<decltype(i)>::kDensityRateApart; }, integrator_) &&
       !model_.densityRatePasses().empty();
-  if (first.densityRateApart) {
-    model_.refreshCspmMatrices(P_, neighbours_);  // (the density-rate pass reads them)
-    model_.densityRate(P_, neighbours_);
-  }
+  if (first.densityRateApart) model_.densityRate(P_, neighbours_);
   model_.evaluate(P_, neighbours_, first);
   return finishStep([](std::size_t) {});
 }

@@ -1,7 +1,7 @@
 // The density-rate pass's pairs in SIMD blocks (pair_loop_blocks.hpp; a fluid
 // particle's fluid neighbours, and with kDiffusion = false, continuity
-// alone, its wall neighbours), in 2D and 3D, with a kernel whose dWdr_r
-// vectorises:
+// alone, its wall neighbours), in 2D and 3D, with a kernel the rows take
+// (kRowKernel: its laneDWdr_r vectorises):
 //
 //   d rho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij                       (continuity_density.hpp)
 //              + 2 delta h c0 sum_j V_j psi_ij (-r_ij . grad_i W_ij) / (r_ij^2 + eta^2)
